@@ -1,0 +1,143 @@
+// Chapter 1: the spring model. Counts each family's springs, tabulates force against extension and the energy of
+// a uniformly stretched sheet, and checks that the forces are minus the gradient of the energy.
+#include "cloth/command_line.hpp"
+#include "cloth/force_field.hpp"
+#include "cloth/output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+using namespace cloth;
+
+namespace {
+
+// [gradient_check]
+// Largest relative difference between f(x) and -grad E(x), the gradient taken by central differences
+// (E - E)/(2 eps) per coordinate. With D = 0 the forces are conservative, so the two must agree to O(eps^2).
+double gradient_check(ForceField& field, const Vector& x) {
+  const Vector v = Vector::Zero(x.size());
+  Vector f(x.size());
+  field.forces(x, v, f);
+  const double eps = 1e-6;
+  Vector xp = x;
+  double worst = 0;
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    xp[k] = x[k] + eps;
+    const double e_plus = field.energy(xp, v).total();
+    xp[k] = x[k] - eps;
+    const double e_minus = field.energy(xp, v).total();
+    xp[k] = x[k];
+    const double minus_grad = -(e_plus - e_minus) / (2 * eps);
+    worst = std::max(worst, std::abs(f[k] - minus_grad) / std::max(1.0, std::abs(f[k])));
+  }
+  return worst;
+}
+// [gradient_check]
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CommandLine cli("ch01_springs",
+                  "Chapter 1: the report's mass-spring cloth. Counts springs, tabulates force against extension and\n"
+                  "the energy of a uniformly stretched sheet, and checks f = -grad E by central differences.");
+  return run_program(cli.program(), [&] {
+    Options opt = cli.parse(argc, argv);
+    opt.scene.damping = 0;  // the gradient check needs conservative forces
+    const Scene scene(opt.scene);
+    prepare_output_dir(opt.run.out_dir);
+    const std::string dir = opt.run.out_dir + "/";
+    const Grid& g = scene.grid();
+
+    // [spring_counts]
+    std::printf("grid %dx%d, spacing %g m: %d particles, %d free\n", g.M, g.N, g.d, scene.particle_count(),
+                scene.free_count());
+    for (SpringFamily f : all_spring_families)
+      std::printf("  %-10s springs: %4d (closed form %d), rest length %.6g m\n", family_name(f),
+                  scene.springs().count(f), spring_count(f, g.M, g.N),
+                  scene.springs().count(f) ? scene.springs().springs[static_cast<std::size_t>(
+                                                 scene.springs().family[static_cast<int>(f)].begin)].rest_length
+                                           : 0.0);
+    std::printf("  total      springs: %4d\n", scene.springs().size());
+    // [spring_counts]
+
+    // Force along the spring, K (L0 - l), and its energy, for one spring of each family, l from 0 to 2 L0.
+    {
+      std::FILE* out = std::fopen((dir + "force_extension.dat").c_str(), "w");
+      std::fprintf(out, "# family(0 structural,1 shear,2 flexion) L0 l l/L0 force_along_u energy\n");
+      for (SpringFamily f : all_spring_families) {
+        const double L0 = f == SpringFamily::structural ? g.d : f == SpringFamily::shear ? g.d * std::sqrt(2.0) : 2 * g.d;
+        const double K = scene.stiffness(f);
+        for (int k = 0; k <= 200; ++k) {
+          const double l = 2.0 * L0 * k / 200;
+          std::fprintf(out, "%d %.10g %.10g %.10g %.10g %.10g\n", static_cast<int>(f), L0, l, l / L0, K * (L0 - l),
+                       0.5 * K * (l - L0) * (l - L0));
+        }
+        std::fprintf(out, "\n\n");
+      }
+      std::fclose(out);
+    }
+
+    // Spring energy of the sheet stretched uniformly by s in x and y: every spring is s L0 long, so
+    // E(s) = 1/2 K (s - 1)^2 sum L0^2, a parabola per family; the program measures it through the model.
+    ForceField field(scene);
+    {
+      std::FILE* out = std::fopen((dir + "stretch_energy.dat").c_str(), "w");
+      std::fprintf(out, "# s E_structural E_shear E_flexion E_total E_closed_form\n");
+      double sum_L0_squared = 0;
+      for (const Spring& s : scene.springs().springs) sum_L0_squared += s.rest_length * s.rest_length;
+      for (int k = 0; k <= 100; ++k) {
+        const double s = 0.5 + k / 100.0;
+        std::fprintf(out, "%.6g", s);
+        double total = 0;
+        for (SpringFamily f : all_spring_families) {
+          // One family alone, with nothing pinned, so that every spring is stretched to exactly s L0.
+          SceneParams sheet = opt.scene;
+          sheet.families = FamilySet::only(f);
+          sheet.pins = PinSet::none;
+          const Scene one(sheet);
+          ForceField one_field(one);
+          Vector x = one.initial_positions();
+          for (Eigen::Index i = 0; i < x.size(); i += 3) x[i] *= s, x[i + 1] *= s;
+          const double e = one_field.energy(x, Vector::Zero(x.size())).spring;
+          total += e;
+          std::fprintf(out, " %.10g", e);
+        }
+        std::fprintf(out, " %.10g %.10g\n", total, 0.5 * opt.scene.stiffness * (s - 1) * (s - 1) * sum_L0_squared);
+      }
+      std::fclose(out);
+    }
+
+    // The rest mesh, one line segment per spring, for the figure of the three families.
+    {
+      std::FILE* out = std::fopen((dir + "springs.dat").c_str(), "w");
+      for (SpringFamily f : all_spring_families) {
+        std::fprintf(out, "# %s\n", family_name(f));
+        const SpringRange r = scene.springs().family[static_cast<int>(f)];
+        for (int k = r.begin; k < r.end; ++k) {
+          const Spring& s = scene.springs().springs[static_cast<std::size_t>(k)];
+          const auto p = scene.rest_positions().segment<3>(3 * s.p);
+          const auto q = scene.rest_positions().segment<3>(3 * s.q);
+          std::fprintf(out, "%g %g\n%g %g\n\n", p[0], p[1], q[0], q[1]);
+        }
+        std::fprintf(out, "\n");
+      }
+      std::fclose(out);
+    }
+
+    // f = -grad E on a random configuration: rest positions perturbed by up to 30% of d, so that some springs
+    // are stretched and some compressed.
+    std::mt19937 rng(2019);
+    std::uniform_real_distribution<double> jitter(-0.3 * g.d, 0.3 * g.d);
+    Vector x = scene.initial_positions();
+    for (Eigen::Index k = 0; k < x.size(); ++k) x[k] += jitter(rng);
+    const double worst = gradient_check(field, x);
+    std::printf("f = -grad E by central differences (eps = 1e-6) on a randomly perturbed sheet: largest relative "
+                "error %.2e\n", worst);
+    std::FILE* out = std::fopen((dir + "gradient_check.txt").c_str(), "w");
+    std::fprintf(out, "largest_relative_error = %.3e\n", worst);
+    std::fclose(out);
+    return worst < 1e-6 ? 0 : 1;
+  });
+}

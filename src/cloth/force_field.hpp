@@ -1,0 +1,88 @@
+// The forces of MODEL.md on the free particles (spring, damping, gravity), their energies, and their analytic
+// Jacobians df/dx and df/dv assembled into sparse matrices whose pattern is built once per scene.
+#pragma once
+
+#include "cloth/scene.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <array>
+#include <vector>
+
+namespace cloth {
+
+using Vector = Eigen::VectorXd;
+using ConstVectorRef = Eigen::Ref<const Eigen::VectorXd>;
+using VectorRef = Eigen::Ref<Eigen::VectorXd>;
+using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major (CSC), full storage of both triangles
+
+/// The three parts of the energy E = kinetic + gravity + spring (MODEL.md), in joules.
+struct Energy {
+  double kinetic = 0;
+  double gravity = 0;
+  double spring = 0;
+  [[nodiscard]] double total() const { return kinetic + gravity + spring; }
+};
+
+/// How the Newton matrix treats the two terms of df/dx that break symmetry or definiteness.
+enum class StiffnessTreatment {
+  exact,      ///< df/dx as it is: indefinite for compressed springs, non-symmetric when damping is on
+  symmetric,  ///< the exact spring Hessian, but the damper's d/dx dropped (Baraff & Witkin 1998): symmetric,
+              ///< possibly indefinite; identical to exact for an undamped cloth
+  definite    ///< also Choi & Ko (2002): compressed springs lose their transverse term, so the matrix is
+              ///< symmetric positive definite
+};
+
+/// Below this fraction of its rest length a spring has no defined direction u; it then exerts no force and
+/// contributes nothing to the Jacobians (the guard for coincident particles, Chapter 7).
+inline constexpr double degenerate_length_fraction = 1e-12;
+
+/// Evaluates forces, energies and Jacobians of one scene. Owns the scratch space and the sparsity pattern, so
+/// nothing is allocated after construction. Not thread-safe: one ForceField per thread.
+class ForceField {
+ public:
+  explicit ForceField(const Scene& scene);
+
+  [[nodiscard]] const Scene& scene() const { return scene_; }
+  [[nodiscard]] int dof_count() const { return scene_.dof_count(); }
+
+  /// f(x, v): the total force on every free particle (3 n_free values).
+  void forces(const ConstVectorRef& x, const ConstVectorRef& v, VectorRef f);
+
+  /// The acceleration M^{-1} f(x, v), the right-hand side of v' = M^{-1} f.
+  void acceleration(const ConstVectorRef& x, const ConstVectorRef& v, VectorRef a);
+
+  /// Kinetic, gravitational and spring energy of the state (pinned particles included, at rest).
+  [[nodiscard]] Energy energy(const ConstVectorRef& x, const ConstVectorRef& v);
+
+  /// An all-zero matrix with the sparsity pattern shared by df/dx, df/dv and the Newton matrix:
+  /// a 3x3 block per free particle and per spring joining two free particles.
+  [[nodiscard]] const SparseMatrix& pattern() const { return pattern_; }
+
+  /// The exact analytic Jacobians df/dx and df/dv, refilled in place (they must have pattern()'s pattern).
+  void jacobians(const ConstVectorRef& x, const ConstVectorRef& v, SparseMatrix& dfdx, SparseMatrix& dfdv);
+
+  /// The Newton matrix of implicit Euler, A = M - h df/dv - h^2 df/dx, refilled in place in pattern().
+  void newton_matrix(const ConstVectorRef& x, const ConstVectorRef& v, double h, StiffnessTreatment treatment,
+                     SparseMatrix& A);
+
+ private:
+  // Where one spring's four 3x3 blocks (pp, qq, pq, qp) start in the value array, per block column; -1 when a
+  // block touches a pinned particle (pinned particles are not unknowns, so those blocks do not exist).
+  struct SpringBlocks {
+    std::array<std::array<int, 3>, 4> column_start;
+  };
+  void scatter_state(const ConstVectorRef& x, const ConstVectorRef& v);
+  template <class AddBlocks>
+  void for_each_spring_block(StiffnessTreatment treatment, AddBlocks&& add);
+
+  const Scene& scene_;
+  Vector X_;  // all slots' positions: x in the head, the pinned rest positions in the tail
+  Vector V_;  // all slots' velocities: v in the head, zeros in the tail
+  Vector F_;  // all slots' forces; the tail (forces on pinned particles) is computed and ignored
+  SparseMatrix pattern_;
+  std::vector<SpringBlocks> spring_blocks_;
+  std::vector<int> diagonal_entry_;  // value index of entry (k, k), for the mass term
+};
+
+}  // namespace cloth

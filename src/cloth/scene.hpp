@@ -1,0 +1,98 @@
+// A Scene says exactly what is modeled: the grid, which spring families and force terms exist, which particles
+// are pinned, and how the cloth starts. Pinned particles are not unknowns: the state holds free particles only.
+#pragma once
+
+#include "cloth/grid.hpp"
+#include "cloth/springs.hpp"
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+namespace cloth {
+
+/// The damping law of a spring (MODEL.md).
+enum class DampingModel {
+  projected,  ///< f_p = -D ((v_p - v_q) . u) u: damps only the stretching rate (the book's default)
+  report      ///< f_p = -D (v_p - v_q) |x_p - x_q|: the report's law with its sign corrected
+};
+
+/// Which particles keep their rest position with zero velocity.
+enum class PinSet {
+  corners,  ///< the four corners (the report's scene)
+  corner,   ///< the one corner (0, 0)
+  edge,     ///< the whole edge j = N-1
+  none      ///< nothing: the cloth falls freely
+};
+
+const char* damping_model_name(DampingModel model);
+const char* pin_set_name(PinSet pins);
+
+/// The report's scene and its variations: every number a Scene is built from.
+struct SceneParams {
+  Grid grid;
+  double stiffness = 50.0;            ///< K [N/m], for every family
+  double damping = 0.0;               ///< D [N s/m] (projected) or [N s/m^2] (report law), for every family
+  DampingModel damping_model = DampingModel::projected;
+  FamilySet families = FamilySet::all();
+  PinSet pins = PinSet::corners;
+  double initial_velocity_z = -20.0;  ///< v0: z velocity of every free particle at t = 0 [m/s]
+  double mass = 1.0;                  ///< m, the same for every particle [kg]
+  double gravity = 9.81;              ///< g [m/s^2]; 0 removes the gravity term
+};
+
+/// The largest grid a scene accepts, checked before anything is allocated.
+inline constexpr long long max_particles = 4'000'000;
+
+/// Throws InputError (see cloth/input_error.hpp) naming the first parameter out of range.
+void validate(const SceneParams& params);
+
+/// A built scene. Particles are numbered in "slots": the free particles first, in grid order, then the pinned
+/// ones. The unknowns x, v are the 3 n_free coordinates of the free slots, so slot s < n_free owns x[3s..3s+2].
+class Scene {
+ public:
+  explicit Scene(const SceneParams& params);
+
+  [[nodiscard]] const SceneParams& params() const { return params_; }
+  [[nodiscard]] const Grid& grid() const { return params_.grid; }
+  [[nodiscard]] const SpringSet& springs() const { return springs_; }
+
+  [[nodiscard]] int particle_count() const { return params_.grid.particle_count(); }
+  [[nodiscard]] int free_count() const { return free_count_; }
+  [[nodiscard]] int dof_count() const { return 3 * free_count_; }
+  [[nodiscard]] int slot(int particle) const { return slot_of_particle_[static_cast<std::size_t>(particle)]; }
+  [[nodiscard]] int particle_of_slot(int slot) const { return particle_of_slot_[static_cast<std::size_t>(slot)]; }
+  [[nodiscard]] bool is_pinned(int particle) const { return slot(particle) >= free_count_; }
+
+  /// K and D of a family (the same for all families unless a chapter sets them apart).
+  [[nodiscard]] double stiffness(SpringFamily f) const { return stiffness_[static_cast<int>(f)]; }
+  [[nodiscard]] double damping(SpringFamily f) const { return damping_[static_cast<int>(f)]; }
+  void set_family_stiffness(SpringFamily f, double K) { stiffness_[static_cast<int>(f)] = K; }
+  void set_family_damping(SpringFamily f, double D) { damping_[static_cast<int>(f)] = D; }
+
+  /// Whether a force term is modeled at all; a term that is not costs nothing in the force loops.
+  [[nodiscard]] bool has_damping() const;
+  [[nodiscard]] bool has_gravity() const { return params_.gravity != 0.0; }
+
+  /// Rest positions of all slots (3 per slot, free slots first): the pinned tail never changes.
+  [[nodiscard]] const Eigen::VectorXd& rest_positions() const { return rest_positions_; }
+  /// Initial free-particle positions x(0) (the rest configuration) and velocities v(0) = (0, 0, v0).
+  [[nodiscard]] Eigen::VectorXd initial_positions() const;
+  [[nodiscard]] Eigen::VectorXd initial_velocities() const;
+
+  /// Positions of every particle in grid order (3 per particle), pinned ones at rest, from free positions x.
+  void all_positions(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> out) const;
+
+ private:
+  SceneParams params_;
+  std::vector<int> slot_of_particle_;
+  std::vector<int> particle_of_slot_;
+  int free_count_ = 0;
+  SpringSet springs_;
+  std::array<double, 3> stiffness_{};
+  std::array<double, 3> damping_{};
+  Eigen::VectorXd rest_positions_;
+};
+
+}  // namespace cloth

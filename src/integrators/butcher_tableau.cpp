@@ -1,0 +1,231 @@
+// Butcher tableaus: the built-in methods, the order conditions that check them, and the tableau file format.
+#include "integrators/butcher_tableau.hpp"
+
+#include "cloth/input_error.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace cloth {
+
+namespace {
+
+std::string fmt(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+
+// Rounding tolerance of the checks: tableaus are given as fractions, so their conditions hold to a few ulps.
+constexpr double tolerance = 1e-12;
+
+ButcherTableau make(std::string name, int order, std::initializer_list<std::initializer_list<double>> A,
+                    std::initializer_list<double> b) {
+  ButcherTableau t;
+  t.name = std::move(name);
+  t.order = order;
+  const int s = static_cast<int>(b.size());
+  t.A = Eigen::MatrixXd::Zero(s, s);
+  int i = 0;
+  for (const auto& row : A) {
+    int j = 0;
+    for (double a : row) t.A(i, j++) = a;
+    ++i;
+  }
+  t.b = Eigen::Map<const Eigen::VectorXd>(b.begin(), s);
+  t.c = t.A.rowwise().sum();
+  return t;
+}
+
+}  // namespace
+
+const std::vector<ButcherTableau>& builtin_tableaus() {
+  // [builtin_tableaus]
+  static const std::vector<ButcherTableau> tableaus = {
+      make("euler", 1, {{0}}, {1}),
+      make("heun", 2, {{0, 0}, {1, 0}}, {0.5, 0.5}),
+      make("midpoint", 2, {{0, 0}, {0.5, 0}}, {0, 1}),
+      make("kutta3", 3, {{0, 0, 0}, {0.5, 0, 0}, {-1, 2, 0}}, {1.0 / 6, 2.0 / 3, 1.0 / 6}),
+      make("rk4", 4, {{0, 0, 0, 0}, {0.5, 0, 0, 0}, {0, 0.5, 0, 0}, {0, 0, 1, 0}}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}),
+      make("rule38", 4, {{0, 0, 0, 0}, {1.0 / 3, 0, 0, 0}, {-1.0 / 3, 1, 0, 0}, {1, -1, 1, 0}},
+           {1.0 / 8, 3.0 / 8, 3.0 / 8, 1.0 / 8}),
+  };
+  // [builtin_tableaus]
+  return tableaus;
+}
+
+double order_condition_defect(const ButcherTableau& t, int p) {
+  const Eigen::VectorXd& b = t.b;
+  const Eigen::VectorXd& c = t.c;
+  const Eigen::VectorXd Ac = t.A * c;
+  double defect = 0;
+  const auto check = [&](double lhs, double rhs) { defect = std::max(defect, std::abs(lhs - rhs)); };
+  // The conditions of order p are the rooted trees with p nodes (Butcher 2016, Table 312(I)).
+  switch (p) {
+    case 1: check(b.sum(), 1.0); break;
+    case 2: check(b.dot(c), 1.0 / 2); break;
+    case 3:
+      check(b.dot(c.cwiseProduct(c)), 1.0 / 3);
+      check(b.dot(Ac), 1.0 / 6);
+      break;
+    case 4:
+      check(b.dot(c.array().cube().matrix()), 1.0 / 4);
+      check(b.dot(c.cwiseProduct(Ac)), 1.0 / 8);
+      check(b.dot(t.A * c.cwiseProduct(c)), 1.0 / 12);
+      check(b.dot(t.A * Ac), 1.0 / 24);
+      break;
+    default: break;
+  }
+  return defect;
+}
+
+void validate(const ButcherTableau& t) {
+  const std::string who = "tableau '" + t.name + "': ";
+  const int s = static_cast<int>(t.b.size());
+  if (s == 0) throw InputError(who + "has no stage");
+  if (t.A.rows() != s || t.A.cols() != s || t.c.size() != s)
+    throw InputError(who + "A must be " + std::to_string(s) + "x" + std::to_string(s) + " to match " +
+                     std::to_string(s) + " weights b");
+  if (!t.A.allFinite() || !t.b.allFinite() || !t.c.allFinite()) throw InputError(who + "has a non-finite entry");
+  for (int i = 0; i < s; ++i)
+    for (int j = i; j < s; ++j)
+      if (t.A(i, j) != 0.0)
+        throw InputError(who + "a_" + std::to_string(i + 1) + std::to_string(j + 1) + " = " + fmt(t.A(i, j)) +
+                         " is on or above the diagonal: the method is implicit, and this engine runs explicit "
+                         "methods only (A strictly lower triangular)");
+  for (int i = 0; i < s; ++i) {
+    const double row_sum = t.A.row(i).sum();
+    if (std::abs(t.c[i] - row_sum) > tolerance)
+      throw InputError(who + "row " + std::to_string(i + 1) + ": c_" + std::to_string(i + 1) + " = " + fmt(t.c[i]) +
+                       " but the row sum of A is " + fmt(row_sum) + " (consistency needs c_i = sum_j a_ij)");
+  }
+  if (t.order < 1 || t.order > 4)
+    throw InputError(who + "claims order " + std::to_string(t.order) + ": expected an order from 1 to 4 (the "
+                     "conditions this program checks)");
+  static const char* const conditions[] = {"", "sum b_i = 1", "sum b_i c_i = 1/2",
+                                           "sum b_i c_i^2 = 1/3 and sum b_i a_ij c_j = 1/6",
+                                           "sum b_i c_i^3 = 1/4, sum b_i c_i a_ij c_j = 1/8, sum b_i a_ij c_j^2 = "
+                                           "1/12 and sum b_i a_ij a_jk c_k = 1/24"};
+  for (int p = 1; p <= t.order; ++p) {
+    const double defect = order_condition_defect(t, p);
+    if (defect > tolerance)
+      throw InputError(who + "claims order " + std::to_string(t.order) + " but the order-" + std::to_string(p) +
+                       " condition " + conditions[p] + " fails by " + fmt(defect));
+  }
+}
+
+namespace {
+
+// A number as a decimal or a fraction p/q, so that tableaus can be written as exactly as they are printed.
+bool parse_entry(const std::string& token, double& value) {
+  const auto slash = token.find('/');
+  const auto number = [](const std::string& s, double& out) {
+    if (s.empty()) return false;
+    char* end = nullptr;
+    out = std::strtod(s.c_str(), &end);
+    return end == s.c_str() + s.size() && std::isfinite(out);
+  };
+  if (slash == std::string::npos) return number(token, value);
+  double p = 0, q = 0;
+  if (!number(token.substr(0, slash), p) || !number(token.substr(slash + 1), q) || q == 0) return false;
+  value = p / q;
+  return true;
+}
+
+}  // namespace
+
+ButcherTableau parse_tableau(const std::string& text, const std::string& source) {
+  ButcherTableau t;
+  t.name = source;
+  t.order = 0;
+  std::vector<std::vector<double>> rows;
+  std::vector<int> row_lines;
+  std::vector<double> b;
+  bool have_b = false;
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  const auto fail = [&](const std::string& what) {
+    throw InputError(source + ":" + std::to_string(line_no) + ": " + what);
+  };
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream words(line);
+    std::string first;
+    if (!(words >> first)) continue;
+    if (first == "name") {
+      if (!(words >> t.name)) fail("'name' needs a value");
+    } else if (first == "order") {
+      std::string o;
+      if (!(words >> o) || o.size() != 1 || o[0] < '1' || o[0] > '4') fail("'order' needs a whole number from 1 to 4");
+      t.order = o[0] - '0';
+    } else {
+      if (have_b) fail("nothing may follow the 'b' row");
+      std::vector<double> values;
+      std::string token;
+      std::istringstream entries(first == "b" ? line.substr(line.find('b') + 1) : line);
+      while (entries >> token) {
+        double value = 0;
+        if (!parse_entry(token, value)) fail("'" + token + "' is not a number (write decimals or fractions p/q)");
+        values.push_back(value);
+      }
+      if (first == "b") {
+        b = values;
+        have_b = true;
+      } else {
+        rows.push_back(values);
+        row_lines.push_back(line_no);
+      }
+    }
+  }
+  if (rows.empty() && !have_b)
+    throw InputError(source + ": empty tableau: expected rows 'c_i a_i1 ... a_is' and a row 'b b_1 ... b_s'");
+  if (!have_b) throw InputError(source + ": no 'b' row: expected a last row 'b b_1 ... b_s'");
+  if (t.order == 0) throw InputError(source + ": no 'order' line: expected 'order p' with p from 1 to 4");
+  const int s = static_cast<int>(b.size());
+  if (s == 0) throw InputError(source + ": the 'b' row has no weight");
+  if (static_cast<int>(rows.size()) != s)
+    throw InputError(source + ": " + std::to_string(rows.size()) + " stage rows but " + std::to_string(s) +
+                     " weights in b: expected one row 'c_i a_i1 ... a_is' per weight");
+  t.A.resize(s, s);
+  t.c.resize(s);
+  for (int i = 0; i < s; ++i) {
+    if (static_cast<int>(rows[static_cast<std::size_t>(i)].size()) != s + 1) {
+      line_no = row_lines[static_cast<std::size_t>(i)];
+      fail("stage row " + std::to_string(i + 1) + " has " + std::to_string(rows[static_cast<std::size_t>(i)].size()) +
+           " numbers: expected " + std::to_string(s + 1) + " (c_i, then " + std::to_string(s) + " entries of A)");
+    }
+    t.c[i] = rows[static_cast<std::size_t>(i)][0];
+    for (int j = 0; j < s; ++j) t.A(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j + 1)];
+  }
+  t.b = Eigen::Map<const Eigen::VectorXd>(b.data(), s);
+  try {
+    validate(t);
+  } catch (const InputError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+  return t;
+}
+
+ButcherTableau read_tableau(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read tableau file '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_tableau(text.str(), path);
+}
+
+ButcherTableau tableau_from_argument(const std::string& name_or_path) {
+  std::string names;
+  for (const ButcherTableau& t : builtin_tableaus()) {
+    if (t.name == name_or_path) return t;
+    names += (names.empty() ? "" : ", ") + t.name;
+  }
+  if (std::ifstream(name_or_path).good()) return read_tableau(name_or_path);
+  throw InputError("'" + name_or_path + "' is neither a built-in tableau (" + names + ") nor a readable file");
+}
+
+}  // namespace cloth

@@ -1,0 +1,44 @@
+// The Butcher tableau (A, b, c) of an explicit Runge-Kutta method, its validation against the order conditions,
+// the built-in methods of Chapter 3, and the small text format a reader can write a tableau in.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace cloth {
+
+/// An s-stage Runge-Kutta method: stage i evaluates at t + c_i h the state y + h sum_j a_ij k_j, and the step
+/// is y + h sum_i b_i k_i (Butcher 2016, Hairer, Norsett & Wanner 1993, II.1).
+struct ButcherTableau {
+  std::string name;
+  int order = 1;      ///< the order the tableau claims; validate() checks the conditions up to it
+  Eigen::MatrixXd A;  ///< s x s
+  Eigen::VectorXd b;  ///< weights, s
+  Eigen::VectorXd c;  ///< nodes, s
+
+  [[nodiscard]] int stages() const { return static_cast<int>(b.size()); }
+};
+
+/// Checks that the tableau is one the explicit engine runs and that it has the order it claims:
+/// square A, strictly lower triangular (explicit), c_i = sum_j a_ij, and the order conditions through the claimed
+/// order (1 to 4) to rounding. Throws InputError naming the first row or condition that fails.
+void validate(const ButcherTableau& tableau);
+
+/// The largest |residual| of the order conditions of order p (p = 1..4); 0 for a method of order >= p.
+double order_condition_defect(const ButcherTableau& tableau, int p);
+
+/// The built-in tableaus: euler, heun, midpoint, kutta3, rk4, rule38.
+const std::vector<ButcherTableau>& builtin_tableaus();
+
+/// A built-in tableau by name, or else a tableau file by path. Throws InputError listing the accepted names
+/// when neither exists, or naming the line that is wrong in a file.
+ButcherTableau tableau_from_argument(const std::string& name_or_path);
+
+/// Reads the text format of Chapter 3 (see chapters/03_runge_kutta/rk4_report.tableau). Throws InputError.
+ButcherTableau read_tableau(const std::string& path);
+
+/// Parses that format from text; `source` names it in error messages.
+ButcherTableau parse_tableau(const std::string& text, const std::string& source);
+
+}  // namespace cloth

@@ -1,0 +1,62 @@
+// The tableau becomes the loop: stage i is built from the earlier stages with row i of A, the step from all
+// stages with b.
+#include "integrators/explicit_runge_kutta.hpp"
+
+namespace cloth {
+
+ExplicitRungeKutta::ExplicitRungeKutta(ForceField& field, ButcherTableau tableau)
+    : Stepper(field), tableau_(std::move(tableau)) {
+  validate(tableau_);
+  const int n = field.dof_count();
+  const auto s = static_cast<std::size_t>(tableau_.stages());
+  stage_v_.assign(s, Vector(n));
+  stage_a_.assign(s, Vector(n));
+  stage_x_.resize(n);
+  sum_v_.resize(n);
+  sum_a_.resize(n);
+}
+
+bool ExplicitRungeKutta::step(double h, Vector& x, Vector& v) {
+  const Eigen::MatrixXd& A = tableau_.A;
+  const Eigen::VectorXd& b = tableau_.b;
+  const int s = tableau_.stages();
+  // [rk_stage_loop]
+  for (int i = 0; i < s; ++i) {
+    // X_i = x + h sum_{j<i} a_ij V_j,  V_i = v + h sum_{j<i} a_ij a_j   (zero a_ij cost nothing)
+    Vector& Vi = stage_v_[static_cast<std::size_t>(i)];
+    stage_x_ = x;
+    Vi = v;
+    for (int j = 0; j < i; ++j) {
+      if (A(i, j) == 0.0) continue;
+      const double ha = h * A(i, j);
+      stage_x_.noalias() += ha * stage_v_[static_cast<std::size_t>(j)];
+      Vi.noalias() += ha * stage_a_[static_cast<std::size_t>(j)];
+    }
+    field_.acceleration(stage_x_, Vi, stage_a_[static_cast<std::size_t>(i)]);
+  }
+  // x1 = x + h sum_i b_i V_i,  v1 = v + h sum_i b_i a_i
+  // The sums start from their first term rather than from zero, so the one-stage tableau "euler" reproduces
+  // ExplicitEuler bit for bit (0 + (-0) would turn a negative zero positive).
+  bool first = true;
+  for (int i = 0; i < s; ++i) {
+    if (b[i] == 0.0) continue;
+    const Vector& Vi = stage_v_[static_cast<std::size_t>(i)];
+    const Vector& ai = stage_a_[static_cast<std::size_t>(i)];
+    if (first) {
+      sum_v_.noalias() = b[i] * Vi;
+      sum_a_.noalias() = b[i] * ai;
+      first = false;
+    } else {
+      sum_v_.noalias() += b[i] * Vi;
+      sum_a_.noalias() += b[i] * ai;
+    }
+  }
+  x.noalias() += h * sum_v_;
+  v.noalias() += h * sum_a_;
+  // [rk_stage_loop]
+  counters_.rhs_evaluations += s;
+  ++counters_.steps;
+  return true;
+}
+
+}  // namespace cloth

@@ -1,0 +1,154 @@
+// Newton's method for the implicit Euler step, with the linear solver chosen for the matrix it gets.
+#include "integrators/implicit_euler.hpp"
+
+#include "cloth/input_error.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace cloth {
+
+const char* linear_solver_name(LinearSolverKind kind) {
+  switch (kind) {
+    case LinearSolverKind::ldlt: return "ldlt";
+    case LinearSolverKind::cg: return "cg";
+    case LinearSolverKind::lu: return "lu";
+  }
+  return "?";
+}
+
+void validate(const NewtonSettings& s, const Scene& scene) {
+  if (!(s.tolerance > 0) || !std::isfinite(s.tolerance))
+    throw InputError("--newton-tol: expected a number > 0");
+  if (s.max_iterations < 1) throw InputError("--newton-max-iter: expected a whole number >= 1");
+  if (s.solver == LinearSolverKind::cg && s.treatment != StiffnessTreatment::definite)
+    throw InputError("--linear-solver cg needs a symmetric positive definite matrix: use --jacobian definite "
+                     "with it, or --linear-solver ldlt or lu");
+  if (s.solver == LinearSolverKind::ldlt && s.treatment == StiffnessTreatment::exact && scene.has_damping())
+    throw InputError("--linear-solver ldlt needs a symmetric matrix, and the exact Jacobian of a damped cloth is "
+                     "not: use --linear-solver lu, or --jacobian symmetric or definite");
+}
+
+std::string ImplicitEuler::name() const {
+  std::string n = settings_.max_iterations == 1 ? "implicit_euler_1newton" : "implicit_euler";
+  return n + "_" + linear_solver_name(settings_.solver);
+}
+
+ImplicitEuler::ImplicitEuler(ForceField& field, NewtonSettings settings)
+    : Stepper(field), settings_(settings), A_(field.pattern()) {
+  validate(settings_, field.scene());
+  const int n = field.dof_count();
+  v1_.resize(n), x1_.resize(n), f_.resize(n), r_.resize(n), dv_.resize(n);
+  warm_dv_ = Vector::Zero(n);
+  residuals_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 1);
+  // The pattern never changes, so the fill-reducing ordering and the symbolic factorization are done once.
+  if (settings_.solver == LinearSolverKind::ldlt) ldlt_.analyzePattern(A_);
+  if (settings_.solver == LinearSolverKind::lu) lu_.analyzePattern(A_);
+  cg_.setTolerance(settings_.cg_tolerance);
+  cg_.setMaxIterations(settings_.cg_max_iterations);
+}
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
+  using clock = std::chrono::steady_clock;
+  auto t0 = clock::now();
+  switch (settings_.solver) {
+    case LinearSolverKind::ldlt:
+      ldlt_.factorize(A_);
+      ++counters_.factorizations;
+      timing_.factorization += seconds_since(t0);
+      if (ldlt_.info() != Eigen::Success) return false;
+      t0 = clock::now();
+      dv = ldlt_.solve(rhs);
+      break;
+    case LinearSolverKind::lu:
+      lu_.factorize(A_);
+      ++counters_.factorizations;
+      timing_.factorization += seconds_since(t0);
+      if (lu_.info() != Eigen::Success) return false;
+      t0 = clock::now();
+      dv = lu_.solve(rhs);
+      break;
+    case LinearSolverKind::cg:
+      cg_.compute(A_);  // the Jacobi preconditioner: the diagonal, O(n)
+      timing_.factorization += seconds_since(t0);
+      t0 = clock::now();
+      // The first update of a step resembles the previous step's, so it seeds CG; later updates start at 0.
+      if (warm_start) dv = cg_.solveWithGuess(rhs, warm_dv_);
+      else dv = cg_.solve(rhs);
+      counters_.cg_iterations += cg_.iterations();
+      if (cg_.info() != Eigen::Success) return false;
+      break;
+  }
+  ++counters_.linear_solves;
+  timing_.solve += seconds_since(t0);
+  return dv.allFinite();
+}
+
+bool ImplicitEuler::step(double h, Vector& x, Vector& v) {
+  using clock = std::chrono::steady_clock;
+  const double m = field_.scene().params().mass;
+  const double tol = settings_.tolerance;
+  residuals_.clear();
+  // [newton_loop]
+  v1_ = v;  // the guess v1 = v0
+  double update = INFINITY;
+  for (int k = 0;; ++k) {
+    // Residual r(v1) = M (v1 - v0) - h f(x0 + h v1, v1); r_ holds -r, the right-hand side of the update.
+    x1_ = x + h * v1_;
+    field_.forces(x1_, v1_, f_);
+    ++counters_.rhs_evaluations;
+    r_ = h * f_ - m * (v1_ - v);
+    const double residual = r_.lpNorm<Eigen::Infinity>();
+    residuals_.push_back(residual);
+    const double scale = 1.0 + v1_.lpNorm<Eigen::Infinity>();
+    if (!std::isfinite(residual)) break;
+    if (residual <= tol * m * scale && (k == 0 || update <= tol * scale)) {
+      v = v1_;
+      x = x1_;
+      counters_.newton_iterations += k;
+      ++counters_.steps;
+      return true;
+    }
+    if (k == settings_.max_iterations) break;
+    // Newton update: J dv = -r with J = M - h df/dv - h^2 df/dx at (x0 + h v1, v1).
+    auto t0 = clock::now();
+    field_.newton_matrix(x1_, v1_, h, settings_.treatment, A_);
+    ++counters_.jacobian_assemblies;
+    timing_.assembly += std::chrono::duration<double>(clock::now() - t0).count();
+    if (!solve(r_, dv_, k == 0)) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "linear solve (%s) failed in Newton iteration %d, |r|_inf = %.3g",
+                    linear_solver_name(settings_.solver), k + 1, residual);
+      failure_.reason = buf;
+      counters_.newton_iterations += k + 1;
+      return false;
+    }
+    if (k == 0) warm_dv_ = dv_;
+    v1_ += dv_;
+    update = dv_.lpNorm<Eigen::Infinity>();
+    if (settings_.max_iterations == 1) {
+      // Baraff & Witkin's linearly implicit step: one Newton iteration, accepted by design, unchecked.
+      x = x + h * v1_;
+      v = v1_;
+      counters_.newton_iterations += 1;
+      ++counters_.steps;
+      return true;
+    }
+  }
+  // [newton_loop]
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "Newton did not converge in %d iterations: |r|_inf = %.3g, |dv|_inf = %.3g",
+                settings_.max_iterations, residuals_.back(), update);
+  failure_.reason = buf;
+  counters_.newton_iterations += settings_.max_iterations;
+  return false;
+}
+
+}  // namespace cloth

@@ -1,0 +1,72 @@
+// Implicit (backward) Euler with Newton's method, Chapter 4: solve M (v1 - v0) = h f(x0 + h v1, v1) for v1 on
+// the analytic sparse Jacobian J = M - h df/dv - h^2 df/dx, then x1 = x0 + h v1.
+#pragma once
+
+#include "integrators/stepper.hpp"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cloth {
+
+/// How each Newton system J dv = -r is solved.
+enum class LinearSolverKind {
+  ldlt,  ///< sparse LDL^T, fill-reducing ordering analysed once per scene, numeric factorization per iteration
+  cg,    ///< conjugate gradients with a Jacobi preconditioner, warm-started; needs the definite matrix
+  lu     ///< sparse LU: the only choice for the exact, non-symmetric Jacobian of a damped cloth
+};
+const char* linear_solver_name(LinearSolverKind kind);
+
+/// Newton's stopping rule and its linear algebra.
+struct NewtonSettings {
+  /// Converged when both |dv|_inf <= tol (1 + |v1|_inf) and |r|_inf <= tol m (1 + |v1|_inf), where
+  /// r = M (v1 - v0) - h f(x0 + h v1, v1) is the residual after the update.
+  double tolerance = 1e-8;
+  /// Iterations before the step is declared failed. 1 is Baraff & Witkin's linearly implicit step: one
+  /// iteration from v1 = v0, accepted as it is, by design.
+  int max_iterations = 20;
+  LinearSolverKind solver = LinearSolverKind::ldlt;
+  /// symmetric (the default) suits ldlt and lu; exact needs lu when the cloth is damped; cg needs definite.
+  StiffnessTreatment treatment = StiffnessTreatment::symmetric;
+  double cg_tolerance = 1e-10;  ///< relative residual of each CG solve
+  int cg_max_iterations = 2000;
+};
+
+/// Throws InputError when the solver cannot take the matrix the treatment gives (CG needs the definite one,
+/// LDL^T a symmetric one).
+void validate(const NewtonSettings& settings, const Scene& scene);
+
+class ImplicitEuler final : public Stepper {
+ public:
+  ImplicitEuler(ForceField& field, NewtonSettings settings);
+  [[nodiscard]] std::string name() const override;
+  bool step(double h, Vector& x, Vector& v) override;
+
+  [[nodiscard]] const NewtonSettings& settings() const { return settings_; }
+  /// |r|_inf at the start of each Newton iteration of the last step, and after its last update.
+  [[nodiscard]] const std::vector<double>& residual_history() const { return residuals_; }
+  /// Seconds spent in the last step's assembly, factorization and solve (for Chapter 6's breakdown).
+  struct Timing {
+    double assembly = 0, factorization = 0, solve = 0;
+  };
+  [[nodiscard]] const Timing& timing() const { return timing_; }
+  void reset_timing() { timing_ = {}; }
+
+ private:
+  bool solve(const Vector& rhs, Vector& dv, bool warm_start);
+
+  NewtonSettings settings_;
+  SparseMatrix A_;
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg_;
+  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu_;
+  Vector v1_, x1_, f_, r_, dv_, warm_dv_;
+  std::vector<double> residuals_;
+  Timing timing_;
+};
+
+}  // namespace cloth

@@ -1,0 +1,153 @@
+// The fixed-step driver shared by every simulating chapter.
+#include "integrators/simulate.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+namespace cloth {
+
+double divergence_radius(const Scene& scene, double t_end) {
+  const Grid& g = scene.grid();
+  const double L = std::hypot((g.M - 1) * g.d, (g.N - 1) * g.d);
+  const auto& p = scene.params();
+  return 10.0 * (L + std::abs(p.initial_velocity_z) * t_end + 0.5 * p.gravity * t_end * t_end) + 1.0;
+}
+
+std::string divergence_reason(const Vector& x, const Vector& v, double radius) {
+  const double r2 = radius * radius;
+  for (Eigen::Index k = 0; k + 2 < x.size(); k += 3) {
+    const double d2 = x[k] * x[k] + x[k + 1] * x[k + 1] + x[k + 2] * x[k + 2];
+    const double s2 = v[k] * v[k] + v[k + 1] * v[k + 1] + v[k + 2] * v[k + 2];
+    if (!std::isfinite(d2) || !std::isfinite(s2)) return "a non-finite position or velocity";
+    if (d2 > r2) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "a particle %.3g m from the origin, beyond the bound R = %.3g m", std::sqrt(d2),
+                    radius);
+      return buf;
+    }
+  }
+  return {};
+}
+
+RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record) {
+  ForceField& field = stepper.field();
+  const Scene& scene = field.scene();
+  RunResult result;
+  result.x = scene.initial_positions();
+  result.v = scene.initial_velocities();
+  const double h = settings.dt;
+  const double T = settings.t_end;
+  const auto steps = static_cast<long long>(std::ceil(T / h * (1 - 1e-12)));
+  const double radius = divergence_radius(scene, T);
+
+  // Every recording buffer is sized here, so the step loop below allocates nothing.
+  std::size_t frame_count = 0;
+  const auto record_frame = [&](double t) {
+    Frame& frame = result.frames[frame_count++];
+    frame.t = t;
+    scene.all_positions(result.x, frame.positions);
+  };
+  if (record) {
+    result.energy.reserve(static_cast<std::size_t>(steps) + 1);
+    result.frames.assign(static_cast<std::size_t>(settings.frames) + 1, Frame{0.0, Vector(3 * scene.particle_count())});
+    result.energy.push_back({0.0, field.energy(result.x, result.v)});
+    record_frame(0.0);
+  }
+  int next_frame = 1;
+
+  Vector x_prev = result.x, v_prev = result.v;
+  stepper.reset_counters();
+  const auto start = std::chrono::steady_clock::now();
+  // [simulation_loop]
+  for (long long k = 0; k < steps; ++k) {
+    const double t0 = static_cast<double>(k) * h;
+    const double t1 = k + 1 == steps ? T : static_cast<double>(k + 1) * h;
+    x_prev = result.x;
+    v_prev = result.v;
+    if (!stepper.step(t1 - t0, result.x, result.v)) {
+      result.status = RunStatus::step_failed;
+      result.message = "step failed at step " + std::to_string(k + 1) + ", t = " + std::to_string(t1) + ": " +
+                       stepper.failure().reason;
+      break;
+    }
+    if (const std::string why = divergence_reason(result.x, result.v, radius); !why.empty()) {
+      result.status = RunStatus::diverged;
+      char buf[320];
+      std::snprintf(buf, sizeof buf, "diverged at step %lld, t = %.6g s: %s", k + 1, t1, why.c_str());
+      result.message = buf;
+      result.x = x_prev;  // keep the last sane state
+      result.v = v_prev;
+      break;
+    }
+    result.steps = k + 1;
+    result.t = t1;
+    if (record) {
+      result.energy.push_back({t1, field.energy(result.x, result.v)});
+      if (next_frame <= settings.frames && t1 >= T * next_frame / settings.frames - 1e-9 * h) {
+        record_frame(t1);
+        ++next_frame;
+      }
+    }
+  }
+  // [simulation_loop]
+  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.frames.resize(frame_count);
+  result.counters = stepper.counters();
+  if (result.status == RunStatus::ok) result.message = "ok";
+  return result;
+}
+
+void write_outputs(const RunResult& result, const Stepper& stepper, const RunSettings& settings,
+                   const std::vector<std::pair<std::string, std::string>>& extra) {
+  const Scene& scene = stepper.field().scene();
+  const std::string dir = settings.out_dir + "/";
+  write_final(dir + "final.dat", scene, result.x, result.v);
+  write_energy(dir + "energy.dat", result.energy);
+  write_frames(dir + "frames.dat", scene.grid(), result.frames);
+  const auto& p = scene.params();
+  const auto num = [](double x) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.10g", x);
+    return std::string(buf);
+  };
+  std::vector<std::pair<std::string, std::string>> kv = {
+      {"method", stepper.name()},
+      {"grid", std::to_string(p.grid.M) + "x" + std::to_string(p.grid.N)},
+      {"spacing", num(p.grid.d)},
+      {"K", num(p.stiffness)},
+      {"damping", num(p.damping)},
+      {"damping_model", damping_model_name(p.damping_model)},
+      {"pins", pin_set_name(p.pins)},
+      {"v0", num(p.initial_velocity_z)},
+      {"dt", num(settings.dt)},
+      {"t_end", num(settings.t_end)},
+      {"steps", std::to_string(result.steps)},
+      {"t_reached", num(result.t)},
+      {"wall_seconds", num(result.wall_seconds)},
+      {"rhs_evaluations", std::to_string(result.counters.rhs_evaluations)},
+      {"newton_iterations", std::to_string(result.counters.newton_iterations)},
+      {"newton_iterations_per_step",
+       num(result.steps > 0 ? static_cast<double>(result.counters.newton_iterations) / static_cast<double>(result.steps)
+                            : 0.0)},
+      {"jacobian_assemblies", std::to_string(result.counters.jacobian_assemblies)},
+      {"factorizations", std::to_string(result.counters.factorizations)},
+      {"cg_iterations", std::to_string(result.counters.cg_iterations)},
+  };
+  kv.insert(kv.end(), extra.begin(), extra.end());
+  kv.emplace_back("status", result.status == RunStatus::ok ? "ok" : result.message);
+  write_key_values(dir + "run.txt", kv);
+}
+
+int report(const RunResult& result, const Stepper& stepper, const std::string& program) {
+  if (result.status == RunStatus::ok) {
+    std::printf("%s: %s, %lld steps to t = %g s in %.3f s, %lld force evaluations\n", program.c_str(),
+                stepper.name().c_str(), result.steps, result.t, result.wall_seconds, result.counters.rhs_evaluations);
+    return 0;
+  }
+  std::cerr << program << ": " << stepper.name() << " " << result.message << "\n";
+  return 3;
+}
+
+}  // namespace cloth

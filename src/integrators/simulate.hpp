@@ -1,0 +1,50 @@
+// The one driver every chapter uses: run a scene with any Stepper at fixed h to t_end, record energy and frames,
+// count the work, time it, and stop cleanly when the state diverges or a step fails.
+#pragma once
+
+#include "cloth/command_line.hpp"
+#include "cloth/output.hpp"
+#include "integrators/stepper.hpp"
+
+#include <string>
+#include <vector>
+
+namespace cloth {
+
+/// How a run ended.
+enum class RunStatus { ok, diverged, step_failed };
+
+/// What a run produced. x, v are the last sane state (at time t); energy and frames stop there too.
+struct RunResult {
+  RunStatus status = RunStatus::ok;
+  std::string message;      ///< "ok", or what went wrong with the step number and time
+  long long steps = 0;      ///< steps completed
+  double t = 0;             ///< time reached
+  double wall_seconds = 0;  ///< time spent stepping (recording included)
+  StepCounters counters;
+  Vector x, v;
+  std::vector<EnergySample> energy;  ///< one sample per step, t = 0 included
+  std::vector<Frame> frames;         ///< the cloth at t = k T / frames
+};
+
+/// A state is declared diverged when a coordinate is not finite or a particle is farther from the origin than
+///   R = 10 (L + |v0| T + g T^2 / 2) + 1 m,
+/// L the cloth's rest diagonal: ten times farther than a particle launched at v0 and falling freely for T could be.
+double divergence_radius(const Scene& scene, double t_end);
+
+/// Checks (x, v) against divergence_radius; returns an empty string when sane, else what is wrong.
+std::string divergence_reason(const Vector& x, const Vector& v, double radius);
+
+/// Runs the scene's initial state to settings.t_end with steps of settings.dt (the last one shortened if T is
+/// not a multiple of h). Nothing is allocated inside the step loop: every buffer is sized before it starts.
+RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record = true);
+
+/// Writes final.dat, energy.dat, frames.dat and run.txt into settings.out_dir, with `extra` lines in run.txt.
+void write_outputs(const RunResult& result, const Stepper& stepper, const RunSettings& settings,
+                   const std::vector<std::pair<std::string, std::string>>& extra = {});
+
+/// Prints a one-line summary, and for a failed run one line on stderr with the step and time; returns the exit
+/// status of MODEL.md (0 finished, 3 diverged or failed).
+int report(const RunResult& result, const Stepper& stepper, const std::string& program);
+
+}  // namespace cloth

@@ -1,0 +1,54 @@
+// The interface every time integrator implements: advance the free-particle state (x, v) by one step h,
+// counting the work it did in machine-independent units.
+#pragma once
+
+#include "cloth/force_field.hpp"
+
+#include <string>
+
+namespace cloth {
+
+/// Work done so far, in units that do not depend on the machine (Chapter 6 plots time against these).
+struct StepCounters {
+  long long steps = 0;
+  long long rhs_evaluations = 0;      ///< evaluations of f(x, v)
+  long long jacobian_assemblies = 0;  ///< Newton matrices assembled
+  long long factorizations = 0;       ///< numeric sparse factorizations
+  long long linear_solves = 0;
+  long long cg_iterations = 0;        ///< conjugate-gradient iterations, summed over solves
+  long long newton_iterations = 0;    ///< summed over steps
+};
+
+/// Why a step could not be taken (a Newton iteration that did not converge, a failed factorization).
+struct StepFailure {
+  std::string reason;  ///< one line: what failed, with iteration count and residual
+};
+
+/// A one-step method for x' = v, M v' = f(x, v) on a scene's free particles.
+class Stepper {
+ public:
+  explicit Stepper(ForceField& field) : field_(field) {}
+  virtual ~Stepper() = default;
+  Stepper(const Stepper&) = delete;
+  Stepper& operator=(const Stepper&) = delete;
+
+  /// Short name used in run.txt and in plots ("explicit_euler", "rk4", "implicit_euler", ...).
+  [[nodiscard]] virtual std::string name() const = 0;
+
+  /// Advances (x, v) from t to t + h in place. Returns false, with x and v unchanged and failure() set,
+  /// when the method could not take the step; a step is never accepted silently.
+  virtual bool step(double h, Vector& x, Vector& v) = 0;
+
+  [[nodiscard]] const StepCounters& counters() const { return counters_; }
+  void reset_counters() { counters_ = {}; }
+  [[nodiscard]] const StepFailure& failure() const { return failure_; }
+  [[nodiscard]] ForceField& field() { return field_; }
+  [[nodiscard]] const ForceField& field() const { return field_; }
+
+ protected:
+  ForceField& field_;
+  StepCounters counters_;
+  StepFailure failure_;
+};
+
+}  // namespace cloth
