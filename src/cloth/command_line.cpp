@@ -3,6 +3,7 @@
 
 #include "cloth/input_error.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -14,8 +15,16 @@
 
 namespace cloth {
 
+namespace {
+
+// strtod and strtoll skip leading blanks; a value with blanks around it is a quoting slip, so it is refused whole.
+bool has_blank(const std::string& text) { return text.find_first_of(" \t\n\r\f\v") != std::string::npos; }
+
+}  // namespace
+
 double parse_number(const std::string& text) {
   if (text.empty()) throw InputError("expected a number, got an empty value");
+  if (has_blank(text)) throw InputError("expected a number, got '" + text + "'");
   char* end = nullptr;
   errno = 0;
   const double value = std::strtod(text.c_str(), &end);
@@ -29,7 +38,7 @@ long long parse_integer(const std::string& text) {
   char* end = nullptr;
   errno = 0;
   const long long value = std::strtoll(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
+  if (text.empty() || has_blank(text) || end != text.c_str() + text.size() || errno == ERANGE)
     throw InputError("expected a whole number, got '" + text + "'");
   return value;
 }
@@ -72,6 +81,40 @@ Grid parse_grid(const std::string& text, double spacing) {
   return Grid{static_cast<int>(M), static_cast<int>(N), spacing};
 }
 
+/// The shared flags of MODEL.md, in the order --help lists them: the usage text and the "missing value" message
+/// both come from this one table, so they cannot disagree.
+struct SharedFlag {
+  const char* name;
+  const char* value_name;
+  const char* accepted;  ///< what the value means and which values are accepted
+  const char* fallback;  ///< the default, as --help prints it
+};
+constexpr SharedFlag shared_flags[] = {
+    {"--grid", "MxN", "particles, M, N >= 2", "20x20"},
+    {"--spacing", "d", "rest spacing [m], > 0", "0.1"},
+    {"--K", "k", "spring stiffness [N/m], > 0", "50"},
+    {"--damping", "D", "damping coefficient, >= 0", "0"},
+    {"--damping-model", "projected|report", "damping law", "projected"},
+    {"--springs", "LIST", "comma list of structural,shear,flexion", "all three"},
+    {"--pins", "corners|corner|edge|none", "pinned particles", "corners"},
+    {"--v0", "vz", "initial z velocity of free particles [m/s]", "-20"},
+    {"--dt", "h", "time step [s], > 0", "0.01"},
+    {"--t-end", "T", "simulated time [s], >= dt", "2"},
+    {"--frames", "n", "frames.dat holds n+1 frames, 1 <= n <= 100000", "20"},
+    {"--out", "DIR", "output folder", ""},
+};
+
+const SharedFlag* find_shared(const std::string& flag) {
+  for (const SharedFlag& f : shared_flags)
+    if (flag == f.name) return &f;
+  return nullptr;
+}
+
+// "--K" followed by "--dt" means the value was forgotten; "-20" or "-.5" is a value (a negative number).
+bool looks_like_flag(const std::string& arg) {
+  return arg.size() > 2 && arg[0] == '-' && arg[1] == '-' && std::isalpha(static_cast<unsigned char>(arg[2])) != 0;
+}
+
 FamilySet parse_families(const std::string& text) {
   FamilySet set{{false, false, false}};
   std::stringstream s(text);
@@ -104,27 +147,19 @@ void CommandLine::add_switch(std::string flag, std::string help, std::function<v
 
 std::string CommandLine::usage() const {
   std::ostringstream u;
-  u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (MODEL.md):\n"
-    << "  --grid MxN                 particles, M, N >= 2                     [20x20]\n"
-    << "  --spacing d                rest spacing [m], > 0                    [0.1]\n"
-    << "  --K k                      spring stiffness [N/m], > 0              [50]\n"
-    << "  --damping D                damping coefficient, >= 0                [0]\n"
-    << "  --damping-model projected|report   damping law                      [projected]\n"
-    << "  --springs LIST             comma list of structural,shear,flexion   [all three]\n"
-    << "  --pins corners|corner|edge|none    pinned particles                 [corners]\n"
-    << "  --v0 vz                    initial z velocity of free particles     [-20]\n"
-    << "  --dt h                     time step [s], > 0                       [0.01]\n"
-    << "  --t-end T                  simulated time [s], >= dt                [2]\n"
-    << "  --frames n                 frames.dat holds n+1 frames, n >= 1      [20]\n"
-    << "  --out DIR                  output folder                            [./" << program_ << "]\n"
-    << "  --help                     this text\n";
+  const auto line = [&u](std::string head, const std::string& text, const std::string& fallback) {
+    head = "  " + head;
+    if (head.size() < 37) head.resize(37, ' ');
+    u << head << " " << text << (fallback.empty() ? "" : " (default " + fallback + ")") << "\n";
+  };
+  u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (MODEL.md):\n";
+  for (const SharedFlag& f : shared_flags)
+    line(std::string(f.name) + " " + f.value_name, f.accepted,
+         std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback));
+  line("--help", "this text", "");
   if (!chapter_flags_.empty()) {
     u << "\nChapter flags:\n";
-    for (const Flag& f : chapter_flags_) {
-      std::string head = "  " + f.name + (f.value_name.empty() ? "" : " " + f.value_name);
-      if (head.size() < 29) head.resize(29, ' ');
-      u << head << f.help << "\n";
-    }
+    for (const Flag& f : chapter_flags_) line(f.name + (f.value_name.empty() ? "" : " " + f.value_name), f.help, "");
   }
   u << "\nExit status: 0 finished, 2 bad input (nothing written), 3 diverged (outputs up to then kept).\n";
   return u.str();
@@ -147,13 +182,13 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
       chapter->set_switch();
       continue;
     }
-    static const char* const shared[] = {"--grid", "--spacing", "--K", "--damping", "--damping-model", "--springs",
-                                         "--pins", "--v0", "--dt", "--t-end", "--frames", "--out"};
-    bool is_shared = false;
-    for (const char* s : shared) is_shared = is_shared || flag == s;
-    if (!chapter && !is_shared)
+    const SharedFlag* shared = find_shared(flag);
+    if (!chapter && !shared)
       throw InputError("unknown flag '" + flag + "' (" + program_ + " --help lists the accepted flags)");
-    if (k + 1 >= argc) throw InputError(flag + ": missing value");
+    if (k + 1 >= argc || looks_like_flag(argv[k + 1]))
+      throw InputError(flag + ": missing value: expected " + flag + " " +
+                       (chapter ? chapter->value_name + " (" + chapter->help + ")"
+                                : std::string(shared->value_name) + " (" + shared->accepted + ")"));
     const std::string value = argv[++k];
     try {
       if (chapter) chapter->set_value(value);
