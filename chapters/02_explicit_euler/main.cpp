@@ -1,0 +1,159 @@
+// Chapter 2: explicit Euler on the report's cloth, symplectic Euler beside it, and the measurement of explicit
+// Euler's energy growth factor (1 + (h omega)^2) per step on an undamped spring.
+#include "chapters/02_explicit_euler/single_spring.hpp"
+#include "cloth/command_line.hpp"
+#include "cloth/input_error.hpp"
+#include "integrators/methods.hpp"
+#include "integrators/simulate.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+using namespace cloth;
+
+namespace {
+
+std::string stepper_name(const std::string& method) {
+  return method == "explicit" ? "explicit_euler" : "symplectic_euler";
+}
+
+// The highest angular frequency of the cloth linearised at its rest state, omega_max^2 = largest eigenvalue of
+// -M^{-1} df/dx, by power iteration (at rest every spring is at its rest length, so -df/dx is positive
+// semidefinite). Explicit Euler multiplies that mode's energy by 1 + (h omega_max)^2 per step.
+double fastest_rest_frequency(ForceField& field) {
+  const Scene& scene = field.scene();
+  const Vector x = scene.initial_positions();
+  const Vector v = Vector::Zero(x.size());
+  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
+  field.jacobians(x, v, dfdx, dfdv);
+  Vector q = Vector::Ones(x.size()) + Vector::LinSpaced(x.size(), 0.0, 1.0);  // not orthogonal to the top mode
+  double lambda = 0;
+  for (int k = 0; k < 500; ++k) {
+    const Vector w = -(dfdx * q) / scene.params().mass;
+    lambda = q.dot(w) / q.squaredNorm();
+    q = w.normalized();
+  }
+  return std::sqrt(std::max(lambda, 0.0));
+}
+
+// [single_spring_measurement]
+// Runs the single spring of single_spring.hpp with explicit and symplectic Euler and writes single_spring.dat:
+// t, explicit Euler's energy, the prediction E0 (1 + (h omega)^2)^n, symplectic Euler's energy.
+// Returns the measured per-step factor of explicit Euler, (E_n / E_0)^(1/n).
+double measure_single_spring(const SceneParams& params, const RunSettings& run, const std::string& dir) {
+  const Scene scene(params);
+  ForceField field(scene);
+  auto euler = make_stepper("explicit_euler", field);
+  auto symplectic = make_stepper("symplectic_euler", field);
+  // Stretched by 1% of the rest length: even after the growth below the spring stays shorter than twice its rest
+  // length and longer than zero, where the force is exactly linear.
+  const double s0 = -0.01 * params.grid.d;
+  Vector xe, ve, xs, vs;
+  single_spring_initial_state(scene, s0, xe, ve);
+  single_spring_initial_state(scene, s0, xs, vs);
+  const double omega = std::sqrt(params.stiffness / params.mass);
+  const double h = run.dt;
+  const double predicted = 1 + (h * omega) * (h * omega);
+  const double E0 = field.energy(xe, ve).total();
+  const auto steps = static_cast<long long>(std::llround(run.t_end / h));
+  std::FILE* out = std::fopen((dir + "/single_spring.dat").c_str(), "w");
+  if (!out) throw InputError("--out: cannot write " + dir + "/single_spring.dat");
+  std::fprintf(out, "# single undamped spring, K = %g N/m, m = %g kg, omega = %.10g rad/s, h = %g s, h omega = %.6g\n",
+               params.stiffness, params.mass, omega, h, h * omega);
+  std::fprintf(out, "# t E_explicit_euler E0*(1+(h omega)^2)^n E_symplectic_euler\n");
+  std::fprintf(out, "%.10g %.17g %.17g %.17g\n", 0.0, E0, E0, E0);
+  double E = E0;
+  for (long long n = 1; n <= steps; ++n) {
+    euler->step(h, xe, ve);
+    symplectic->step(h, xs, vs);
+    E = field.energy(xe, ve).total();
+    std::fprintf(out, "%.10g %.17g %.17g %.17g\n", static_cast<double>(n) * h, E,
+                 E0 * std::pow(predicted, static_cast<double>(n)), field.energy(xs, vs).total());
+  }
+  std::fclose(out);
+  const double measured = std::pow(E / E0, 1.0 / static_cast<double>(steps));
+  std::printf("single spring: K = %g N/m, m = %g kg, omega = %.6g rad/s, h = %g s, h omega = %.6g\n", params.stiffness,
+              params.mass, omega, h, h * omega);
+  std::printf("  energy growth per explicit Euler step: predicted 1 + (h omega)^2 = %.15f, measured over %lld steps "
+              "%.15f\n", predicted, steps, measured);
+  return measured;
+}
+// [single_spring_measurement]
+
+// One run of the report scene with `method`, outputs in `dir`; returns report()'s exit status.
+int run_cloth(const SceneParams& params, RunSettings run, const std::string& method, const std::string& dir,
+              const std::string& program) {
+  const Scene scene(params);
+  ForceField field(scene);
+  auto stepper = make_stepper(stepper_name(method), field);
+  run.out_dir = dir;
+  prepare_output_dir(dir);
+  const double omega_max = fastest_rest_frequency(field);
+  const double hw = run.dt * omega_max;
+  const RunResult result = simulate(*stepper, run);
+  char buf[3][64];
+  std::snprintf(buf[0], sizeof buf[0], "%.6g", omega_max);
+  std::snprintf(buf[1], sizeof buf[1], "%.6g", hw);
+  std::snprintf(buf[2], sizeof buf[2], "%.10g", 1 + hw * hw);
+  write_outputs(result, *stepper, run,
+                {{"omega_max_at_rest", buf[0]}, {"h_omega_max", buf[1]}, {"explicit_euler_growth_per_step", buf[2]}});
+  std::printf("%s: K = %g, D = %g: fastest mode at rest omega_max = %.4g rad/s, h omega_max = %.4g, explicit Euler "
+              "multiplies its energy by %.4g per step\n", program.c_str(), params.stiffness, params.damping, omega_max,
+              hw, 1 + hw * hw);
+  return report(result, *stepper, program);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string method = "explicit";
+  bool single_spring = false, report_runs = false;
+  CommandLine cli("ch02_explicit_euler",
+                  "Chapter 2: explicit Euler (or symplectic Euler) on the report's cloth, and explicit Euler's energy\n"
+                  "growth factor measured on a single undamped spring.");
+  cli.add_value("--method", "explicit|symplectic", "explicit Euler (default) or symplectic Euler",
+                [&](const std::string& s) {
+                  if (s != "explicit" && s != "symplectic")
+                    throw InputError("unknown method '" + s + "': expected explicit or symplectic");
+                  method = s;
+                });
+  cli.add_switch("--single-spring",
+                 "instead of the cloth, one undamped spring (K, --dt, --t-end apply): energy growth, single_spring.dat",
+                 [&] { single_spring = true; });
+  cli.add_switch("--report-runs",
+                 "the report's (K, D) = (50,0), (200,0), (200,20) with both methods and the single spring at K = 200, "
+                 "one subfolder of --out each (the chapter's figures; exit 0 even when a run diverges)",
+                 [&] { report_runs = true; });
+  return run_program(cli.program(), [&] {
+    const Options opt = cli.parse(argc, argv);
+    if (single_spring && report_runs) throw InputError("--single-spring and --report-runs: choose one");
+    if (single_spring) {
+      if (opt.scene.damping != 0) throw InputError("--single-spring: the growth factor is for D = 0; drop --damping");
+      SceneParams p = single_spring_params(opt.scene.stiffness, 0);
+      prepare_output_dir(opt.run.out_dir);
+      measure_single_spring(p, opt.run, opt.run.out_dir);
+      return 0;
+    }
+    if (!report_runs) return run_cloth(opt.scene, opt.run, method, opt.run.out_dir, cli.program());
+
+    // [report_runs]
+    struct Config {
+      double K, D;
+    };
+    const Config configs[] = {{50, 0}, {200, 0}, {200, 20}};
+    prepare_output_dir(opt.run.out_dir);
+    for (const std::string m : {"explicit", "symplectic"})
+      for (const Config& c : configs) {
+        SceneParams p = opt.scene;
+        p.stiffness = c.K;
+        p.damping = c.D;
+        char name[64];
+        std::snprintf(name, sizeof name, "/%s_K%g_D%g", m.c_str(), c.K, c.D);
+        run_cloth(p, opt.run, m, opt.run.out_dir + name, cli.program());  // a divergence is a result here
+      }
+    measure_single_spring(single_spring_params(200, 0), opt.run, opt.run.out_dir);
+    // [report_runs]
+    return 0;
+  });
+}
