@@ -1,0 +1,191 @@
+// The micro-benchmarks of Chapter 6 (see benchmarks.hpp). Every timed body runs on buffers sized beforehand.
+#include "benchmarks.hpp"
+
+#include "hand_rk4.hpp"
+#include "timing.hpp"
+
+#include "integrators/explicit_euler.hpp"
+#include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/implicit_euler.hpp"
+#include "integrators/simulate.hpp"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+#ifdef CLOTH_HAVE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+namespace ch06 {
+
+using namespace cloth;
+
+namespace {
+
+constexpr double h = 0.01;  // the report's step, for every implicit quantity
+constexpr int trajectory_length = 16;
+
+// The cloth from t = 0.5 s on (RK4 with h = 1e-3 to get there, then implicit Euler steps of h): folded,
+// springs compressed and stretched, the states a solver meets in a run, each one step after the other.
+std::vector<std::pair<Vector, Vector>> folded_trajectory(const Scene& scene) {
+  ForceField field(scene);
+  ExplicitRungeKutta rk4(field, builtin_tableaus()[4]);
+  RunSettings run;
+  run.dt = 1e-3;
+  run.t_end = 0.5;
+  const RunResult r = simulate(rk4, run, false);
+  std::vector<std::pair<Vector, Vector>> states{{r.x, r.v}};
+  ImplicitEuler ie(field, {1e-10, 20, LinearSolverKind::ldlt, StiffnessTreatment::symmetric});
+  Vector x = r.x, v = r.v;
+  while (static_cast<int>(states.size()) < trajectory_length) {
+    ie.step(h, x, v);
+    states.emplace_back(x, v);
+  }
+  return states;
+}
+
+Benchmark make(std::string name, Seconds s, double count = 0, std::string unit = "") {
+  return {std::move(name), 1e6 * s.wall, 1e6 * s.cpu, count, std::move(unit)};
+}
+
+template <class Solver>
+Benchmark factorization(const char* name, Solver& solver, const SparseMatrix& A, int runs) {
+  solver.analyzePattern(A);  // the ordering and the symbolic factorization: once per scene, not timed
+  return make(name, median_seconds([&] { solver.factorize(A); }, runs, 2));
+}
+
+}  // namespace
+
+std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
+  std::vector<Benchmark> out;
+  const Scene scene(params);
+  ForceField field(scene);
+  const auto states = folded_trajectory(scene);
+  const Vector& x = states[0].first;
+  const Vector& v = states[0].second;
+  const int n = field.dof_count();
+  Vector f(n);
+  const auto springs = static_cast<double>(scene.springs().size());
+
+  out.push_back(make("force_evaluation", median_seconds([&] { field.forces(x, v, f); }, runs, 10, 200), springs,
+                     "springs"));
+  SparseMatrix A = field.pattern();
+  const auto nnz = static_cast<double>(A.nonZeros());
+  out.push_back(make("newton_matrix_refill_symmetric",
+                     median_seconds([&] { field.newton_matrix(x, v, h, StiffnessTreatment::symmetric, A); }, runs, 5, 20),
+                     nnz, "nonzeros"));
+  out.push_back(make("newton_matrix_refill_definite",
+                     median_seconds([&] { field.newton_matrix(x, v, h, StiffnessTreatment::definite, A); }, runs, 5, 20),
+                     nnz, "nonzeros"));
+
+  // Numeric factorizations of the definite matrix (positive definite, so LL^T works as well as LDL^T).
+  {
+    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> s;
+    out.push_back(factorization("factorize_eigen_ldlt_amd", s, A, runs));
+  }
+  {
+    Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> s;
+    out.push_back(factorization("factorize_eigen_llt_amd", s, A, runs));
+  }
+  {
+    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> s;
+    out.push_back(factorization("factorize_eigen_ldlt_natural", s, A, runs));
+  }
+#ifdef CLOTH_HAVE_CHOLMOD
+  // CHOLMOD with one ordering each (its default tries several and keeps the least fill).
+  const auto cholmod = [&](auto& s, const char* name, int ordering) {
+    s.cholmod().nmethods = 1;
+    s.cholmod().method[0].ordering = ordering;
+    Benchmark b = factorization(name, s, A, runs);
+    b.count = s.cholmod().lnz;
+    b.count_name = "factor_nonzeros";
+    out.push_back(b);
+  };
+  {
+    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> s;
+    cholmod(s, "factorize_cholmod_supernodal_amd", CHOLMOD_AMD);
+  }
+  {
+    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> s;
+    cholmod(s, "factorize_cholmod_supernodal_metis", CHOLMOD_METIS);
+  }
+  {
+    Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Lower> s;
+    cholmod(s, "factorize_cholmod_simplicial_amd", CHOLMOD_AMD);
+  }
+  {
+    Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Lower> s;
+    cholmod(s, "factorize_cholmod_simplicial_metis", CHOLMOD_METIS);
+  }
+#endif
+
+  // Eigen's CG on the first Newton system of a step, cold (from 0) and warm (from the previous step's update).
+  {
+    Vector fx(n), r(n), dv_prev(n), dv(n);
+    Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
+    cg.setTolerance(1e-8);
+    const auto system = [&](const Vector& xs, const Vector& vs) {
+      field.newton_matrix(xs + h * vs, vs, h, StiffnessTreatment::definite, A);
+      field.forces(xs + h * vs, vs, fx);
+      r = h * fx;
+      cg.compute(A);
+    };
+    system(states[0].first, states[0].second);
+    dv_prev = cg.solve(r);
+    system(states[1].first, states[1].second);
+    const Seconds cold = median_seconds([&] { dv = cg.solve(r); }, runs, 2, 5);
+    const auto cold_it = static_cast<double>(cg.iterations());
+    const Seconds warm = median_seconds([&] { dv = cg.solveWithGuess(r, dv_prev); }, runs, 2, 5);
+    const auto warm_it = static_cast<double>(cg.iterations());
+    out.push_back(make("cg_eigen_jacobi_cold_1e-8", cold, cold_it, "iterations"));
+    out.push_back(make("cg_eigen_jacobi_warm_1e-8", warm, warm_it, "iterations"));
+  }
+
+  // One Newton iteration of implicit Euler (force evaluation, refill, factorization or preconditioner, solve),
+  // stepping through consecutive states so that CG's warm start is the one a run would see.
+  const auto newton_iteration = [&](LinearSolverKind kind, const char* name) {
+    ForceField f2(scene);
+    ImplicitEuler ie(f2, {1e-8, 1, kind, StiffnessTreatment::definite});
+    Vector xs = x, vs = v;
+    std::size_t i = 0;
+    const auto next = [&] {
+      i = (i + 1) % states.size();
+      xs = states[i].first;
+      vs = states[i].second;
+      ie.step(h, xs, vs);
+    };
+    for (std::size_t k = 0; k < states.size(); ++k) next();
+    ie.reset_counters();
+    const Seconds t = median_seconds(next, runs, 0, static_cast<int>(states.size()) - 1);
+    out.push_back(make(name, t,
+                       static_cast<double>(ie.counters().cg_iterations) / static_cast<double>(ie.counters().steps),
+                       "cg_iterations_per_solve"));
+  };
+  newton_iteration(LinearSolverKind::ldlt, "newton_iteration_ldlt");
+  newton_iteration(LinearSolverKind::cg, "newton_iteration_cg_warm");
+
+  // Runge-Kutta: the generic tableau engine against RK4 written out by hand, on the same forces.
+  {
+    ExplicitRungeKutta generic(field, builtin_tableaus()[4]);
+    HandRK4 hand(field);
+    ExplicitEuler euler(field);
+    Vector xs = x, vs = v;
+    const auto time_step = [&](Stepper& s) {
+      return median_seconds(
+          [&] {
+            xs = x;
+            vs = v;
+            s.step(1e-4, xs, vs);
+          },
+          runs, 5, 50);
+    };
+    // Interleaved, twice each, so that a slow spell of the machine favours neither; the faster of the two kept.
+    const Seconds g1 = time_step(generic), h1 = time_step(hand), g2 = time_step(generic), h2 = time_step(hand);
+    const auto faster = [](Seconds a, Seconds b) { return a.cpu < b.cpu ? a : b; };
+    out.push_back(make("rk4_step_tableau", faster(g1, g2), 4, "rhs_evaluations"));
+    out.push_back(make("rk4_step_hand_unrolled", faster(h1, h2), 4, "rhs_evaluations"));
+    out.push_back(make("explicit_euler_step", time_step(euler), 1, "rhs_evaluations"));
+  }
+  return out;
+}
+
+}  // namespace ch06

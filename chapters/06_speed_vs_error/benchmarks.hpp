@@ -1,0 +1,27 @@
+// Chapter 6's micro-benchmarks: what one force evaluation, one Newton-matrix refill, one sparse factorization,
+// one CG solve, one Newton iteration and one Runge-Kutta step cost on a folded cloth, each the median of
+// several timed runs after a warm-up.
+#pragma once
+
+#include "cloth/scene.hpp"
+
+#include <string>
+#include <vector>
+
+namespace ch06 {
+
+/// One timed quantity: a name, the median wall-clock and thread-CPU microseconds, and a machine-independent count
+/// beside it (CG iterations, nonzeros of the factor, ...; 0 when there is none).
+struct Benchmark {
+  std::string name;
+  double microseconds = 0;
+  double cpu_microseconds = 0;
+  double count = 0;
+  std::string count_name;
+};
+
+/// Runs every micro-benchmark on `params` (the report scene at 20 x 20 by default), on the cloth's states from
+/// t = 0.5 s on, where it is folded. `runs` timed runs per quantity.
+std::vector<Benchmark> run_benchmarks(const cloth::SceneParams& params, int runs);
+
+}  // namespace ch06
