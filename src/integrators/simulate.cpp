@@ -66,7 +66,10 @@ RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record) {
     const double t1 = k + 1 == steps ? T : static_cast<double>(k + 1) * h;
     x_prev = result.x;
     v_prev = result.v;
-    if (!stepper.step(t1 - t0, result.x, result.v)) {
+    // Every step is exactly h (t1 - t0 would differ from h by rounding from step to step); only a last step
+    // that T shortens is not.
+    const double step_h = k + 1 == steps && std::abs(T - t0 - h) > 1e-9 * h ? T - t0 : h;
+    if (!stepper.step(step_h, result.x, result.v)) {
       result.status = RunStatus::step_failed;
       result.message = "step failed at step " + std::to_string(k + 1) + ", t = " + std::to_string(t1) + ": " +
                        stepper.failure().reason;

@@ -1,0 +1,124 @@
+// Chapter 3: any explicit Runge-Kutta method, given by its Butcher tableau (a built-in name or a file), on the
+// report's cloth; and the observed order of every built-in tableau on the single spring of Chapter 2.
+#include "chapters/02_explicit_euler/single_spring.hpp"
+#include "cloth/command_line.hpp"
+#include "cloth/input_error.hpp"
+#include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/simulate.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+using namespace cloth;
+
+namespace {
+
+// One run of the cloth with `tableau`, outputs in `dir`, plus lowest_point.dat (t, lowest z of the cloth) from
+// the recorded frames. Returns report()'s exit status.
+int run_cloth(const SceneParams& params, RunSettings run, const ButcherTableau& tableau, const std::string& source,
+              const std::string& dir, const std::string& program) {
+  const Scene scene(params);
+  ForceField field(scene);
+  ExplicitRungeKutta stepper(field, tableau);
+  run.out_dir = dir;
+  prepare_output_dir(dir);
+  const RunResult result = simulate(stepper, run);
+  write_outputs(result, stepper, run,
+                {{"tableau", tableau.name},
+                 {"tableau_source", source},
+                 {"stages", std::to_string(tableau.stages())},
+                 {"order", std::to_string(tableau.order)}});
+  std::FILE* out = std::fopen((dir + "/lowest_point.dat").c_str(), "w");
+  if (!out) throw InputError("--out: cannot write " + dir + "/lowest_point.dat");
+  std::fprintf(out, "# t lowest_z (the lowest particle of the cloth, from frames.dat)\n");
+  for (const Frame& f : result.frames) {
+    double lowest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index k = 2; k < f.positions.size(); k += 3) lowest = std::min(lowest, f.positions[k]);
+    std::fprintf(out, "%.10g %.10g\n", f.t, lowest);
+  }
+  std::fclose(out);
+  return report(result, stepper, program);
+}
+
+// [observed_order]
+// Error at t = 1 s of every built-in tableau on the damped single spring (K = 50, D = 2, m = 1), against the
+// closed form, for h = 0.1 / 2^k; writes order.dat (h, then one error column per tableau). The error is the
+// largest deviation of a free particle's displacement or velocity (divided by omega) from the closed form.
+void measure_orders(const std::string& dir) {
+  const double K = 50, D = 2, m = 1, T = 1, s0 = -0.005;
+  const Scene scene(single_spring_params(K, D));
+  ForceField field(scene);
+  const OscillatorState exact = single_spring_exact(K, D, m, s0, T);
+  const double omega = std::sqrt(K / m);
+  std::FILE* out = std::fopen((dir + "/order.dat").c_str(), "w");
+  if (!out) throw InputError("--out: cannot write " + dir + "/order.dat");
+  std::fprintf(out, "# h");
+  for (const ButcherTableau& t : builtin_tableaus()) std::fprintf(out, " %s", t.name.c_str());
+  std::fprintf(out, "\n");
+  for (int k = 1; k <= 10; ++k) {
+    const double h = 0.1 / std::pow(2.0, k);
+    std::fprintf(out, "%.10g", h);
+    for (const ButcherTableau& t : builtin_tableaus()) {
+      ExplicitRungeKutta stepper(field, t);
+      Vector x, v;
+      single_spring_initial_state(scene, s0, x, v);
+      const Vector rest = scene.initial_positions();
+      const auto steps = std::llround(T / h);
+      for (long long n = 0; n < steps; ++n) stepper.step(h, x, v);
+      double error = 0;
+      for (Eigen::Index i = 1; i < x.size(); i += 3)
+        error = std::max({error, std::abs(x[i] - rest[i] - exact.s), std::abs(v[i] - exact.ds) / omega});
+      std::fprintf(out, " %.6e", error);
+    }
+    std::fprintf(out, "\n");
+  }
+  std::fclose(out);
+}
+// [observed_order]
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string tableau_argument = "rk4";
+  bool report_runs = false;
+  CommandLine cli("ch03_runge_kutta",
+                  "Chapter 3: an explicit Runge-Kutta method from its Butcher tableau on the report's cloth.");
+  cli.add_value("--tableau", "NAME|FILE",
+                "a built-in tableau (euler, heun, midpoint, kutta3, rk4, rule38; default rk4) or a tableau file",
+                [&](const std::string& s) { tableau_argument = s; });
+  cli.add_switch("--report-runs",
+                 "the chosen tableau on the report's (K, D) = (50,0), (200,0), (200,20), one subfolder of --out each, "
+                 "and order.dat (the chapter's figures; exit 0 even when a run diverges)",
+                 [&] { report_runs = true; });
+  return run_program(cli.program(), [&] {
+    Options opt = cli.parse(argc, argv);
+    ButcherTableau tableau;
+    try {
+      tableau = tableau_from_argument(tableau_argument);
+    } catch (const InputError& e) {
+      throw InputError(std::string("--tableau: ") + e.what());
+    }
+    const bool builtin = tableau.name == tableau_argument;
+    const std::string source = builtin ? "builtin" : tableau_argument;
+    if (!report_runs) return run_cloth(opt.scene, opt.run, tableau, source, opt.run.out_dir, cli.program());
+
+    struct Config {
+      double K, D;
+    };
+    const Config configs[] = {{50, 0}, {200, 0}, {200, 20}};
+    prepare_output_dir(opt.run.out_dir);
+    opt.run.frames = static_cast<int>(std::llround(opt.run.t_end / opt.run.dt));  // a frame per step, for lowest_point.dat
+    for (const Config& c : configs) {
+      SceneParams p = opt.scene;
+      p.stiffness = c.K;
+      p.damping = c.D;
+      char name[64];
+      std::snprintf(name, sizeof name, "/%s_K%g_D%g", tableau.name.c_str(), c.K, c.D);
+      run_cloth(p, opt.run, tableau, source, opt.run.out_dir + name, cli.program());
+    }
+    measure_orders(opt.run.out_dir);
+    return 0;
+  });
+}

@@ -1,0 +1,222 @@
+// Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the analytic sparse
+// Jacobian; Baraff and Witkin's one-iteration variant beside full Newton; the residuals of one stiff step.
+#include "cloth/command_line.hpp"
+#include "cloth/input_error.hpp"
+#include "integrators/implicit_euler.hpp"
+#include "integrators/simulate.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+using namespace cloth;
+
+namespace {
+
+const char* treatment_name(StiffnessTreatment t) {
+  switch (t) {
+    case StiffnessTreatment::exact: return "exact";
+    case StiffnessTreatment::symmetric: return "symmetric";
+    case StiffnessTreatment::definite: return "definite";
+  }
+  return "?";
+}
+
+std::string num(double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", x);
+  return buf;
+}
+
+struct Outcome {
+  int status;
+  RunResult result;
+};
+
+// One run of the cloth with `newton`, outputs in `dir`.
+Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettings& newton, const std::string& dir,
+                  const std::string& program) {
+  const Scene scene(params);
+  validate(newton, scene);  // before anything is written
+  ForceField field(scene);
+  ImplicitEuler stepper(field, newton);
+  run.out_dir = dir;
+  prepare_output_dir(dir);
+  RunResult result = simulate(stepper, run);
+  write_outputs(result, stepper, run,
+                {{"linear_solver", linear_solver_name(newton.solver)},
+                 {"jacobian", treatment_name(newton.treatment)},
+                 {"newton_tol", num(newton.tolerance)},
+                 {"newton_max_iter", std::to_string(newton.max_iterations)}});
+  const int status = report(result, stepper, program);
+  if (result.steps > 0)
+    std::printf("  Newton iterations per step: %.3f (%lld in %lld steps), %lld factorizations\n",
+                static_cast<double>(result.counters.newton_iterations) / static_cast<double>(result.steps),
+                result.counters.newton_iterations, result.steps, result.counters.factorizations);
+  return {status, std::move(result)};
+}
+
+// [stiff_step_residuals]
+// The residual |r|_inf after each Newton iteration of the first step of the report scene at K = 1e5 N/m,
+// h = 0.01 s (h omega_max ~ 10): exact Jacobian, sparse LU, tolerance tight enough to watch the sequence reach
+// rounding. Writes residuals.dat: iteration k, |r_k|, |r_k| / |r_{k-1}|^2.
+void stiff_step_residuals(const SceneParams& report_scene, const std::string& dir) {
+  SceneParams p = report_scene;
+  p.stiffness = 1e5;
+  p.damping = 0;
+  const Scene scene(p);
+  ForceField field(scene);
+  NewtonSettings newton;
+  newton.solver = LinearSolverKind::lu;
+  newton.treatment = StiffnessTreatment::exact;
+  newton.tolerance = 1e-14;
+  newton.max_iterations = 30;
+  ImplicitEuler stepper(field, newton);
+  Vector x = scene.initial_positions(), v = scene.initial_velocities();
+  stepper.step(0.01, x, v);  // if it fails the history still shows how far it got
+  const std::vector<double>& r = stepper.residual_history();
+  std::FILE* out = std::fopen((dir + "/residuals.dat").c_str(), "w");
+  if (!out) throw InputError("--out: cannot write " + dir + "/residuals.dat");
+  std::fprintf(out, "# first step of the report scene, K = 1e5, D = 0, h = 0.01, exact Jacobian, LU\n");
+  std::fprintf(out, "# k |r_k|_inf |r_k|/|r_(k-1)|^2\n");
+  std::printf("stiff step (K = 1e5, h = 0.01, exact Jacobian, LU): |r_k|_inf =");
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    std::fprintf(out, "%zu %.6e %.6e\n", k, r[k], k ? r[k] / (r[k - 1] * r[k - 1]) : NAN);
+    std::printf(" %.3g", r[k]);
+  }
+  std::printf("\n");
+  std::fclose(out);
+}
+// [stiff_step_residuals]
+
+// Newton iterations of every step for one setting, stepping by hand so that each step's count is seen:
+// iterations.dat gets t and the count; a failed step ends the file with its count and the step's time.
+void iterations_per_step(const SceneParams& params, const RunSettings& run, const NewtonSettings& newton,
+                         const std::string& path) {
+  const Scene scene(params);
+  ForceField field(scene);
+  ImplicitEuler stepper(field, newton);
+  Vector x = scene.initial_positions(), v = scene.initial_velocities();
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) throw InputError("--out: cannot write " + path);
+  std::fprintf(out, "# t newton_iterations final_residual (K = %g, D = %g, h = %g, jacobian %s)\n", params.stiffness,
+               params.damping, run.dt, treatment_name(newton.treatment));
+  const auto steps = std::llround(run.t_end / run.dt);
+  for (long long n = 1; n <= steps; ++n) {
+    const long long before = stepper.counters().newton_iterations;
+    const bool ok = stepper.step(run.dt, x, v);
+    std::fprintf(out, "%.10g %lld %.6e\n", static_cast<double>(n) * run.dt,
+                 stepper.counters().newton_iterations - before, stepper.residual_history().back());
+    if (!ok) break;
+  }
+  std::fclose(out);
+}
+
+// The report's three (K, D) with full Newton and with one Newton iteration, the stiff step's residuals, and the
+// definite (Choi & Ko) matrix against the symmetric one at K = 50.
+void report_runs(const Options& opt, const NewtonSettings& newton, const std::string& program) {
+  const std::string dir = opt.run.out_dir;
+  prepare_output_dir(dir);
+  struct Config {
+    double K, D;
+  };
+  const Config configs[] = {{50, 0}, {200, 0}, {200, 20}};
+  std::FILE* summary = std::fopen((dir + "/comparison.dat").c_str(), "w");
+  if (!summary) throw InputError("--out: cannot write " + dir + "/comparison.dat");
+  std::fprintf(summary, "# K D newton_per_step_full newton_per_step_one factorizations_full factorizations_one "
+                        "wall_full wall_one E_final_full E_final_one max_position_difference\n");
+  for (const Config& c : configs) {
+    SceneParams p = opt.scene;
+    p.stiffness = c.K;
+    p.damping = c.D;
+    char name[64];
+    std::snprintf(name, sizeof name, "/full_K%g_D%g", c.K, c.D);
+    NewtonSettings full = newton;
+    const Outcome a = run_cloth(p, opt.run, full, dir + name, program);
+    std::snprintf(name, sizeof name, "/one_K%g_D%g", c.K, c.D);
+    NewtonSettings one = newton;
+    one.max_iterations = 1;
+    const Outcome b = run_cloth(p, opt.run, one, dir + name, program);
+    const double diff = a.result.t == b.result.t ? (a.result.x - b.result.x).lpNorm<Eigen::Infinity>() : NAN;
+    const auto per_step = [](const RunResult& r) {
+      return r.steps ? static_cast<double>(r.counters.newton_iterations) / static_cast<double>(r.steps) : 0.0;
+    };
+    std::fprintf(summary, "%g %g %.4f %.4f %lld %lld %.4f %.4f %.8g %.8g %.4e\n", c.K, c.D, per_step(a.result),
+                 per_step(b.result), a.result.counters.factorizations, b.result.counters.factorizations,
+                 a.result.wall_seconds, b.result.wall_seconds, a.result.energy.back().energy.total(),
+                 b.result.energy.back().energy.total(), diff);
+    std::printf("K = %g, D = %g: full Newton %.3f iterations/step, one iteration: largest position difference at "
+                "t = %g s: %.4g m\n", c.K, c.D, per_step(a.result), a.result.t, diff);
+  }
+  std::fclose(summary);
+  stiff_step_residuals(opt.scene, dir);
+  SceneParams p = opt.scene;
+  p.stiffness = 50;
+  p.damping = 0;
+  NewtonSettings symmetric = newton, definite = newton;
+  symmetric.treatment = StiffnessTreatment::symmetric;
+  definite.treatment = StiffnessTreatment::definite;
+  iterations_per_step(p, opt.run, symmetric, dir + "/iterations_symmetric.dat");
+  iterations_per_step(p, opt.run, definite, dir + "/iterations_definite.dat");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  NewtonSettings newton;
+  std::optional<StiffnessTreatment> jacobian;
+  bool want_report_runs = false;
+  CommandLine cli("ch04_implicit_euler",
+                  "Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the\n"
+                  "analytic sparse Jacobian J = M - h df/dv - h^2 df/dx.");
+  cli.add_value("--linear-solver", "ldlt|cg|lu", "sparse LDL^T (default), Jacobi-preconditioned CG, or sparse LU",
+                [&](const std::string& s) {
+                  if (s == "ldlt") newton.solver = LinearSolverKind::ldlt;
+                  else if (s == "cg") newton.solver = LinearSolverKind::cg;
+                  else if (s == "lu") newton.solver = LinearSolverKind::lu;
+                  else throw InputError("unknown solver '" + s + "': expected ldlt, cg or lu");
+                });
+  cli.add_value("--newton-tol", "TOL", "Newton's stopping tolerance on |dv| and |r| (default 1e-8)",
+                [&](const std::string& s) {
+                  const double t = parse_number(s);
+                  if (!(t > 0) || t >= 1) throw InputError("expected a number in (0, 1), got " + s);
+                  newton.tolerance = t;
+                });
+  cli.add_value("--newton-max-iter", "N",
+                "Newton iterations before a step fails (default 20); 1 is Baraff & Witkin's one-iteration step",
+                [&](const std::string& s) {
+                  const long long n = parse_integer(s);
+                  if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
+                  newton.max_iterations = static_cast<int>(n);
+                });
+  cli.add_value("--jacobian", "exact|symmetric|definite",
+                "the Newton matrix's df/dx: exact, symmetric (default; drops the damper's d/dx) or definite "
+                "(Choi & Ko 2002; the default with cg)",
+                [&](const std::string& s) {
+                  if (s == "exact") jacobian = StiffnessTreatment::exact;
+                  else if (s == "symmetric") jacobian = StiffnessTreatment::symmetric;
+                  else if (s == "definite") jacobian = StiffnessTreatment::definite;
+                  else throw InputError("unknown Jacobian '" + s + "': expected exact, symmetric or definite");
+                });
+  cli.add_switch("--report-runs",
+                 "the report's (K, D) = (50,0), (200,0), (200,20) with full and one-iteration Newton, a stiff step's "
+                 "residuals and the definite matrix at K = 50 (the chapter's figures; exit 0 even when a run fails)",
+                 [&] { want_report_runs = true; });
+  return run_program(cli.program(), [&] {
+    const Options opt = cli.parse(argc, argv);
+    // [jacobian_default]
+    // CG needs a symmetric positive definite matrix, so it gets the definite one unless --jacobian says
+    // otherwise; an explicit incompatible choice is refused by validate(NewtonSettings) with exit status 2.
+    newton.treatment = jacobian ? *jacobian
+                                : newton.solver == LinearSolverKind::cg ? StiffnessTreatment::definite
+                                                                        : StiffnessTreatment::symmetric;
+    // [jacobian_default]
+    if (want_report_runs) {
+      validate(newton, Scene(opt.scene));
+      report_runs(opt, newton, cli.program());
+      return 0;
+    }
+    return run_cloth(opt.scene, opt.run, newton, opt.run.out_dir, cli.program()).status;
+  });
+}
