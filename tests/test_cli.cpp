@@ -1,0 +1,266 @@
+// Bad input, end to end: every chapter program is run with what a reader might mistype, and must answer with exit
+// status 2, one line on stderr naming the flag (or the file) and what is accepted, and nothing written.
+// The parser itself is also checked in-process, where the sanitizer build sees every byte it touches.
+#include "cloth/command_line.hpp"
+#include "cloth/input_error.hpp"
+#include "integrators/butcher_tableau.hpp"
+#include "integrators/methods.hpp"
+#include "program_runner.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+using namespace cloth_test;
+
+namespace {
+
+/// One bad command line and the pieces its error line must contain. "@S" in an argument stands for the scratch
+/// folder, which holds a regular file `a_file` and the tableau files below, outside the program's working folder.
+struct BadInput {
+  std::vector<std::string> args;
+  std::vector<std::string> expect;
+};
+
+// Tableau files a reader could get wrong, in the format of Chapter 3 (rows `c_i a_i1 .. a_is`, then `b ...`).
+void write_tableau_files(const fs::path& dir) {
+  const auto write = [&](const char* name, const char* text) { std::ofstream(dir / name) << text; };
+  write("a_file", "not a folder\n");
+  write("empty.tableau", "");
+  write("ragged.tableau", "order 2\n0 0 0\n1 1\nb 1/2 1/2\n");
+  write("word.tableau", "order 2\n0 0 0\n1 one 0\nb 1/2 1/2\n");
+  write("implicit.tableau", "order 1\n1 1\nb 1\n");
+  write("inconsistent.tableau", "order 2\n0 0 0\n0.5 1 0\nb 1/2 1/2\n");
+}
+
+std::string joined(const std::vector<std::string>& args) {
+  std::string s;
+  for (const std::string& a : args) s += (s.empty() ? "" : " ") + a;
+  return s;
+}
+
+/// Runs each case in a fresh scratch folder with --out pointing inside the program's (empty) working folder;
+/// a case's own --out comes later on the line and wins.
+void expect_refused(const std::string& program, const std::vector<BadInput>& cases) {
+  for (const BadInput& c : cases) {
+    ScratchDir scratch;
+    const fs::path cwd = scratch.path() / "cwd";
+    fs::create_directory(cwd);
+    write_tableau_files(scratch.path());
+    std::vector<std::string> args = {"--out", (cwd / "out").string()};
+    for (std::string a : c.args) {
+      if (a.rfind("@S", 0) == 0) a = scratch.path().string() + a.substr(2);
+      args.push_back(a);
+    }
+    // 20 s is a guard against a hang, not a timing check: a refused grid returns in milliseconds, while one that
+    // was allocated (1e10 particles) would fail with bad_alloc or be stopped here, status != 2 either way.
+    const ProgramRun run = run_chapter(program, args, cwd, 20);
+    CAPTURE(program);
+    const std::string command = joined(c.args);
+    CAPTURE(command);
+    CAPTURE(run.err);
+    CHECK(run.status == 2);
+    CHECK(run.out.empty());
+    CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+    CHECK(run.err.rfind(program + ": ", 0) == 0);
+    for (const std::string& e : c.expect) {
+      CAPTURE(e);
+      CHECK(run.err.find(e) != std::string::npos);
+    }
+    CHECK(entry_count(cwd) == 0);  // nothing written: no out folder, no default ./<program> folder
+    CHECK(fs::is_regular_file(scratch.path() / "a_file"));
+  }
+}
+
+/// Bad values of the flags every simulating program shares (MODEL.md).
+std::vector<BadInput> shared_flag_cases() {
+  return {
+      {{"--bogus"}, {"unknown flag '--bogus'", "--help"}},
+      {{"stray"}, {"unknown flag 'stray'"}},
+      {{"--K"}, {"--K: missing value", "> 0"}},
+      {{"--K", "--dt", "0.01"}, {"--K: missing value", "> 0"}},
+      {{"--grid"}, {"--grid: missing value", "MxN"}},
+      {{"--K", "abc"}, {"--K", "expected a number", "'abc'"}},
+      {{"--dt", "0.01s"}, {"--dt", "expected a number"}},
+      {{"--v0", "fast"}, {"--v0", "expected a number"}},
+      {{"--K", " 50"}, {"--K", "expected a number"}},
+      {{"--K", "1e999"}, {"--K", "expected a number"}},
+      {{"--K", "nan"}, {"--K", "finite"}},
+      {{"--damping", "NaN"}, {"--damping", "finite"}},
+      {{"--spacing", "inf"}, {"--spacing", "finite"}},
+      {{"--dt", "-inf"}, {"--dt", "finite"}},
+      {{"--v0", "inf"}, {"--v0", "finite"}},
+      {{"--K", "0"}, {"--K", "> 0"}},
+      {{"--K", "-50"}, {"--K", "> 0"}},
+      {{"--spacing", "0"}, {"--spacing", "> 0"}},
+      {{"--spacing", "-0.1"}, {"--spacing", "> 0"}},
+      {{"--dt", "0"}, {"--dt", "> 0"}},
+      {{"--dt", "-0.01"}, {"--dt", "> 0"}},
+      {{"--damping", "-1"}, {"--damping", ">= 0"}},
+      {{"--t-end", "0.001"}, {"--t-end", "expected t-end >= dt"}},
+      {{"--dt", "0.5", "--t-end", "0.25"}, {"--t-end", "expected t-end >= dt"}},
+      {{"--t-end", "0"}, {"--t-end", "> 0"}},
+      {{"--dt", "1e-12"}, {"--dt", "1e9 steps"}},
+      {{"--grid", "0x5"}, {"--grid", "M, N >= 2", "'0x5'"}},
+      {{"--grid", "1x1"}, {"--grid", "M, N >= 2"}},
+      {{"--grid", "20x1"}, {"--grid", "M, N >= 2"}},
+      {{"--grid", "-3x5"}, {"--grid", "M, N >= 2"}},
+      {{"--grid", "20"}, {"--grid", "MxN"}},
+      {{"--grid", "axb"}, {"--grid", "MxN"}},
+      {{"--grid", "20x20x20"}, {"--grid", "MxN"}},
+      {{"--grid", "100000x100000"}, {"--grid", "4000000"}},
+      {{"--grid", "99999999999999999999x2"}, {"--grid", "MxN"}},
+      {{"--damping-model", "linear"}, {"--damping-model", "'linear'", "projected or report"}},
+      {{"--pins", "all"}, {"--pins", "'all'", "corners, corner, edge or none"}},
+      {{"--springs", "bending"}, {"--springs", "'bending'", "structural,shear,flexion"}},
+      {{"--springs", "structural,,shear"}, {"--springs", "structural,shear,flexion"}},
+      {{"--springs", ""}, {"--springs", "structural,shear,flexion"}},
+      {{"--frames", "0"}, {"--frames", "1 to 100000"}},
+      {{"--frames", "2.5"}, {"--frames", "whole number"}},
+      {{"--out", ""}, {"--out", "folder"}},
+      {{"--out", "@S/a_file"}, {"--out", "a_file", "writable folder"}},
+      {{"--out", "@S/a_file/sub"}, {"--out", "a_file/sub", "writable folder"}},
+      {{"--out", "/proc/cloth_test_out"}, {"--out", "/proc/cloth_test_out", "writable folder"}},
+  };
+}
+
+}  // namespace
+
+TEST_CASE("parse_number takes a whole finite number and nothing else") {
+  CHECK(cloth::parse_number("0.01") == doctest::Approx(0.01).epsilon(1e-15));
+  CHECK(cloth::parse_number("-20") == doctest::Approx(-20).epsilon(1e-15));
+  CHECK(cloth::parse_number("1e3") == doctest::Approx(1000).epsilon(1e-15));
+  for (const char* bad : {"", " 1", "1 ", "1x", "x1", "nan", "-nan", "inf", "-Infinity", "1e999", "--1"}) {
+    CAPTURE(bad);
+    CHECK_THROWS_AS(cloth::parse_number(bad), cloth::InputError);
+  }
+  CHECK(cloth::parse_integer("20") == 20);
+  for (const char* bad : {"", "2.5", "20 ", " 20", "1e3", "99999999999999999999"}) {
+    CAPTURE(bad);
+    CHECK_THROWS_AS(cloth::parse_integer(bad), cloth::InputError);
+  }
+}
+
+TEST_CASE("CommandLine::parse refuses bad chapter flags with the flag's name and accepted values") {
+  cloth::CommandLine cli("prog", "test");
+  double tol = 0;
+  cli.add_value("--newton-tol", "tol", "Newton tolerance, > 0", [&](const std::string& s) {
+    tol = cloth::parse_number(s);
+    if (!(tol > 0)) throw cloth::InputError("expected a number > 0");
+  });
+  const auto error_of = [&](std::vector<const char*> argv) {
+    argv.insert(argv.begin(), "prog");
+    try {
+      cli.parse(static_cast<int>(argv.size()), argv.data());
+    } catch (const cloth::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  CHECK(error_of({"--newton-tol", "1e-9"}) == "accepted");
+  CHECK(tol == doctest::Approx(1e-9).epsilon(1e-12));
+  CHECK(error_of({"--newton-tol"}) == "--newton-tol: missing value: expected --newton-tol tol (Newton tolerance, > 0)");
+  CHECK(error_of({"--newton-tol", "--K", "5"}).find("--newton-tol: missing value") == 0);
+  CHECK(error_of({"--newton-tol", "-1"}) == "--newton-tol: expected a number > 0");
+  // A negative number is a value, not a flag.
+  CHECK(error_of({"--v0", "-5"}) == "accepted");
+  CHECK(error_of({"--v0", "-.5"}) == "accepted");
+}
+
+TEST_CASE("a grid too large is refused before anything is allocated") {
+  cloth::SceneParams p;
+  p.grid.M = 100000;
+  p.grid.N = 100000;
+  CHECK_THROWS_AS(cloth::validate(p), cloth::InputError);
+  CHECK_THROWS_AS(cloth::Scene{p}, cloth::InputError);
+  p.grid.M = 1;
+  p.grid.N = 5;
+  CHECK_THROWS_AS(cloth::Scene{p}, cloth::InputError);
+}
+
+TEST_CASE("unknown method and tableau names list what is accepted") {
+  cloth::Scene scene(cloth::SceneParams{});
+  cloth::ForceField field(scene);
+  try {
+    (void)cloth::make_stepper("rk5", field);
+    FAIL("make_stepper accepted 'rk5'");
+  } catch (const cloth::InputError& e) {
+    const std::string what = e.what();
+    CHECK(what.find("'rk5'") != std::string::npos);
+    for (const std::string& name : cloth::method_names()) CHECK(what.find(name) != std::string::npos);
+  }
+  try {
+    (void)cloth::tableau_from_argument("/nonexistent/rk5");
+    FAIL("tableau_from_argument accepted a missing file");
+  } catch (const cloth::InputError& e) {
+    CHECK(std::string(e.what()).find("rk4") != std::string::npos);
+  }
+}
+
+#ifdef CLOTH_HAVE_CH01_SPRINGS
+TEST_CASE("ch01_springs: bad input gives status 2, one line naming the flag, nothing written") {
+  expect_refused("ch01_springs", shared_flag_cases());
+}
+
+TEST_CASE("ch01_springs: good input does write its folder (so the checks above can fail)") {
+  ScratchDir scratch;
+  const fs::path cwd = scratch.path() / "cwd";
+  fs::create_directory(cwd);
+  const ProgramRun run = run_chapter("ch01_springs", {"--grid", "4x5", "--out", "out"}, cwd);
+  CHECK(run.status == 0);
+  CHECK(fs::is_regular_file(cwd / "out" / "gradient_check.txt"));
+  const ProgramRun help = run_chapter("ch01_springs", {"--help", "--out", "help_out"}, cwd);
+  CHECK(help.status == 0);
+  CHECK(help.out.find("--grid MxN") != std::string::npos);
+  CHECK(!fs::exists(cwd / "help_out"));
+}
+#endif
+
+#ifdef CLOTH_HAVE_CH02_EXPLICIT_EULER
+TEST_CASE("ch02_explicit_euler: bad input gives status 2, one line naming the flag, nothing written") {
+  expect_refused("ch02_explicit_euler", shared_flag_cases());
+}
+#endif
+
+#ifdef CLOTH_HAVE_CH03_RUNGE_KUTTA
+TEST_CASE("ch03_runge_kutta: bad input gives status 2, one line naming the flag, nothing written") {
+  expect_refused("ch03_runge_kutta", shared_flag_cases());
+}
+
+TEST_CASE("ch03_runge_kutta: bad tableau names and files are refused, naming the file and what is wrong") {
+  expect_refused("ch03_runge_kutta",
+                 {
+                     {{"--tableau"}, {"--tableau: missing value"}},
+                     {{"--tableau", "rk5"}, {"--tableau", "'rk5'", "rk4", "heun"}},
+                     {{"--tableau", "@S/missing.tableau"}, {"--tableau", "missing.tableau"}},
+                     {{"--tableau", "@S/empty.tableau"}, {"empty.tableau", "empty tableau"}},
+                     {{"--tableau", "@S/ragged.tableau"}, {"ragged.tableau:3", "stage row 2 has 2 numbers: expected 3"}},
+                     {{"--tableau", "@S/word.tableau"}, {"word.tableau:3", "'one' is not a number"}},
+                     {{"--tableau", "@S/implicit.tableau"}, {"implicit.tableau", "a_11 = 1", "implicit"}},
+                     {{"--tableau", "@S/inconsistent.tableau"}, {"inconsistent.tableau", "c_2 = 0.5", "row sum of A is 1"}},
+                 });
+}
+#endif
+
+#ifdef CLOTH_HAVE_CH04_IMPLICIT_EULER
+TEST_CASE("ch04_implicit_euler: bad input gives status 2, one line naming the flag, nothing written") {
+  expect_refused("ch04_implicit_euler", shared_flag_cases());
+}
+
+TEST_CASE("ch04_implicit_euler: bad Newton and linear-solver settings are refused") {
+  expect_refused("ch04_implicit_euler",
+                 {
+                     {{"--linear-solver", "qr"}, {"--linear-solver", "'qr'", "ldlt", "cg", "lu"}},
+                     {{"--linear-solver"}, {"--linear-solver: missing value"}},
+                     {{"--newton-tol", "0"}, {"--newton-tol", "expected a number"}},
+                     {{"--newton-tol", "nan"}, {"--newton-tol", "finite"}},
+                     {{"--newton-max-iter", "0"}, {"--newton-max-iter", "1"}},
+                     {{"--newton-max-iter", "2.5"}, {"--newton-max-iter", "whole number"}},
+                     {{"--jacobian", "numeric"}, {"--jacobian", "'numeric'", "exact", "symmetric", "definite"}},
+                     {{"--linear-solver", "cg", "--jacobian", "symmetric"}, {"--linear-solver cg", "definite"}},
+                     {{"--damping", "1", "--linear-solver", "ldlt", "--jacobian", "exact"}, {"--linear-solver ldlt", "lu"}},
+                 });
+}
+#endif
