@@ -1,0 +1,82 @@
+// Observed orders of accuracy on a problem with a closed-form solution: the damped single spring of Chapter 2
+// (chapters/02_explicit_euler/single_spring.hpp), m s'' + D s' + K s = 0, exactly linear inside the cloth model.
+#include "../chapters/02_explicit_euler/single_spring.hpp"
+#include "integrators/methods.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace cloth;
+
+namespace {
+
+constexpr double K = 50, D = 2, m = 1, T = 1, s0 = -0.005;
+
+// Largest deviation at t = T of a free particle's displacement, or velocity over omega, from the closed form.
+double error_at_T(const std::string& method, double h) {
+  const Scene scene(single_spring_params(K, D));
+  ForceField field(scene);
+  NewtonSettings newton;
+  newton.tolerance = 1e-13;  // Newton's error must be far below the method's
+  auto stepper = make_stepper(method, field, newton);
+  Vector x, v;
+  single_spring_initial_state(scene, s0, x, v);
+  const Vector rest = scene.initial_positions();
+  const auto steps = std::llround(T / h);
+  for (long long n = 0; n < steps; ++n) REQUIRE(stepper->step(h, x, v));
+  const OscillatorState exact = single_spring_exact(K, D, m, s0, T);
+  const double omega = std::sqrt(K / m);
+  double error = 0;
+  for (Eigen::Index i = 1; i < x.size(); i += 3)
+    error = std::max({error, std::abs(x[i] - rest[i] - exact.s), std::abs(v[i] - exact.ds) / omega});
+  return error;
+}
+
+// Least-squares slope of log(error) against log(h) over h, h/2, h/4.
+double fitted_order(const std::string& method, double h) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double lh = std::log(h / (1 << k));
+    const double le = std::log(error_at_T(method, h / (1 << k)));
+    sx += lh, sy += le, sxx += lh * lh, sxy += lh * le;
+  }
+  return (3 * sxy - sx * sy) / (3 * sxx - sx * sx);
+}
+
+}  // namespace
+
+TEST_CASE("the closed form solves the oscillator: the model's force on the displaced spring is -K s") {
+  const Scene scene(single_spring_params(K, D));
+  ForceField field(scene);
+  Vector x, v, f(scene.dof_count());
+  single_spring_initial_state(scene, s0, x, v);
+  v.setConstant(0);
+  for (Eigen::Index i = 1; i < v.size(); i += 3) v[i] = 0.3;
+  field.forces(x, v, f);
+  for (Eigen::Index i = 0; i < f.size(); ++i)
+    CHECK(f[i] == doctest::Approx(i % 3 == 1 ? -K * s0 - D * 0.3 : 0.0).epsilon(1e-12));
+  // and the closed form satisfies its ODE: s'' by central differences equals -(K s + D s') / m
+  const double t = 0.37, e = 1e-4;
+  const auto a = single_spring_exact(K, D, m, s0, t);
+  const double s_dd = (single_spring_exact(K, D, m, s0, t + e).ds - single_spring_exact(K, D, m, s0, t - e).ds) / (2 * e);
+  CHECK(s_dd == doctest::Approx(-(K * a.s + D * a.ds) / m).epsilon(1e-6));
+}
+
+TEST_CASE("observed order on the damped spring from errors at h, h/2, h/4, each within 0.15 of the theory") {
+  struct Case {
+    const char* method;
+    double h;  // small enough to be in the asymptotic range, large enough to stay above rounding
+    double order;
+  };
+  const Case cases[] = {
+      {"euler", 0.003125, 1},  {"heun", 0.0125, 2},   {"midpoint", 0.0125, 2},         {"kutta3", 0.0125, 3},
+      {"rk4", 0.0125, 4},      {"rule38", 0.0125, 4}, {"explicit_euler", 0.003125, 1}, {"symplectic_euler", 0.003125, 1},
+      {"implicit_euler", 0.003125, 1},
+  };
+  for (const Case& c : cases) {
+    const double p = fitted_order(c.method, c.h);
+    INFO(std::string(c.method) << ": fitted order " << p << ", expected " << c.order);
+    CHECK(std::abs(p - c.order) < 0.15);
+  }
+}
