@@ -138,6 +138,26 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
     const auto warm_it = static_cast<double>(cg.iterations());
     out.push_back(make("cg_eigen_jacobi_cold_1e-8", cold, cold_it, "iterations"));
     out.push_back(make("cg_eigen_jacobi_warm_1e-8", warm, warm_it, "iterations"));
+    // The same two solves with the core's allocation-free block-Jacobi PCG (integrators/pcg.hpp).
+    BlockJacobiPCG pcg(n);
+    const Seconds precondition = median_seconds([&] { pcg.compute(A); }, runs, 2, 20);
+    const Seconds pcg_cold = median_seconds(
+        [&] {
+          dv.setZero();
+          pcg.solve(A, r, dv, 1e-8, 1000);
+        },
+        runs, 2, 5);
+    const auto pcg_cold_it = static_cast<double>(pcg.iterations());
+    const Seconds pcg_warm = median_seconds(
+        [&] {
+          dv = dv_prev;
+          pcg.solve(A, r, dv, 1e-8, 1000);
+        },
+        runs, 2, 5);
+    const auto pcg_warm_it = static_cast<double>(pcg.iterations());
+    out.push_back(make("pcg_block_jacobi_setup", precondition));
+    out.push_back(make("pcg_block_jacobi_cold_1e-8", pcg_cold, pcg_cold_it, "iterations"));
+    out.push_back(make("pcg_block_jacobi_warm_1e-8", pcg_warm, pcg_warm_it, "iterations"));
   }
 
   // One Newton iteration of implicit Euler (force evaluation, refill, factorization or preconditioner, solve),

@@ -232,6 +232,58 @@ void ForceField::jacobians(const ConstVectorRef& x, const ConstVectorRef& v, Spa
                         });
 }
 
+namespace {
+
+// values[block] += sign (alpha u u^T + beta I): the one block shape of the lean refill (symmetric, 6 numbers).
+inline void add_rank_one_plus_identity(double* values, const std::array<int, 3>& start, double alpha, double beta,
+                                       const double* u, double sign) {
+  if (start[0] < 0) return;
+  const double a = sign * alpha, b = sign * beta;
+  const double u00 = a * u[0] * u[0], u11 = a * u[1] * u[1], u22 = a * u[2] * u[2];
+  const double u01 = a * u[0] * u[1], u02 = a * u[0] * u[2], u12 = a * u[1] * u[2];
+  double* c0 = values + start[0];
+  double* c1 = values + start[1];
+  double* c2 = values + start[2];
+  c0[0] += u00 + b, c0[1] += u01, c0[2] += u02;
+  c1[0] += u01, c1[1] += u11 + b, c1[2] += u12;
+  c2[0] += u02, c2[1] += u12, c2[2] += u22 + b;
+}
+
+}  // namespace
+
+// [lean_refill]
+// The Newton matrix when every spring block has the shape alpha u u^T + beta I: no damping, or projected damping
+// without its d/dx (the symmetric and definite treatments). With t = 1 - L0/l (clamped at 0 for definite),
+//   -h^2 df_p/dx_p = h^2 K [u u^T + t (I - u u^T)],   -h df_p/dv_p = h D u u^T,
+// so alpha = h^2 K (1 - t) + h D and beta = h^2 K t: six numbers per block instead of two 3x3 matrix products.
+void ForceField::refill_symmetric(double h, bool definite, double* values) {
+  const auto& set = scene_.springs();
+  const double* X = X_.data();
+  for (SpringFamily family : all_spring_families) {
+    const SpringRange r = set.family[static_cast<int>(family)];
+    const double h2K = h * h * scene_.stiffness(family);
+    const double hD = h * scene_.damping(family);
+    for (int k = r.begin; k < r.end; ++k) {
+      const Spring& s = set.springs[static_cast<std::size_t>(k)];
+      const int p = 3 * s.p, q = 3 * s.q;
+      const double d[3] = {X[p] - X[q], X[p + 1] - X[q + 1], X[p + 2] - X[q + 2]};
+      const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (l <= degenerate_length_fraction * s.rest_length) continue;
+      const double inv_l = 1.0 / l;
+      const double u[3] = {d[0] * inv_l, d[1] * inv_l, d[2] * inv_l};
+      double t = 1.0 - s.rest_length * inv_l;
+      if (definite) t = std::max(t, 0.0);
+      const double alpha = h2K * (1.0 - t) + hD, beta = h2K * t;
+      const auto& c = spring_blocks_[static_cast<std::size_t>(k)].column_start;
+      add_rank_one_plus_identity(values, c[0], alpha, beta, u, 1.0);
+      add_rank_one_plus_identity(values, c[1], alpha, beta, u, 1.0);
+      add_rank_one_plus_identity(values, c[2], alpha, beta, u, -1.0);
+      add_rank_one_plus_identity(values, c[3], alpha, beta, u, -1.0);
+    }
+  }
+}
+// [lean_refill]
+
 void ForceField::newton_matrix(const ConstVectorRef& x, const ConstVectorRef& v, double h,
                                StiffnessTreatment treatment, SparseMatrix& A) {
   scatter_state(x, v);
@@ -239,6 +291,13 @@ void ForceField::newton_matrix(const ConstVectorRef& x, const ConstVectorRef& v,
   std::fill_n(values, A.nonZeros(), 0.0);
   const double m = scene_.params().mass;
   for (int k : diagonal_entry_) values[k] = m;
+  // Without damping, exact and symmetric are the same matrix; projected damping is symmetric once its d/dx goes.
+  const bool lean = !scene_.has_damping() ||
+                    (scene_.params().damping_model == DampingModel::projected && treatment != StiffnessTreatment::exact);
+  if (lean) {
+    refill_symmetric(h, treatment == StiffnessTreatment::definite, values);
+    return;
+  }
   for_each_spring_block(treatment, [&](const SpringBlocks& blocks, const Eigen::Matrix3d& Bx, const Eigen::Matrix3d& Bv) {
     // A = M - h df/dv - h^2 df/dx, block by block.
     const Eigen::Matrix3d C = -h * Bv - (h * h) * Bx;

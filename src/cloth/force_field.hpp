@@ -75,6 +75,9 @@ class ForceField {
   void scatter_state(const ConstVectorRef& x, const ConstVectorRef& v);
   template <class AddBlocks>
   void for_each_spring_block(StiffnessTreatment treatment, AddBlocks&& add);
+  // The Newton matrix's spring blocks when each is alpha u u^T + beta I (see force_field.cpp); expects
+  // scatter_state() to have run and the mass diagonal to be in `values`.
+  void refill_symmetric(double h, bool definite, double* values);
 
   const Scene& scene_;
   Vector X_;  // all slots' positions: x in the head, the pinned rest positions in the tail

@@ -36,7 +36,7 @@ std::string ImplicitEuler::name() const {
 }
 
 ImplicitEuler::ImplicitEuler(ForceField& field, NewtonSettings settings)
-    : Stepper(field), settings_(settings), A_(field.pattern()) {
+    : Stepper(field), settings_(settings), A_(field.pattern()), cg_(field.dof_count()) {
   validate(settings_, field.scene());
   const int n = field.dof_count();
   v1_.resize(n), x1_.resize(n), f_.resize(n), r_.resize(n), dv_.resize(n);
@@ -45,8 +45,6 @@ ImplicitEuler::ImplicitEuler(ForceField& field, NewtonSettings settings)
   // The pattern never changes, so the fill-reducing ordering and the symbolic factorization are done once.
   if (settings_.solver == LinearSolverKind::ldlt) ldlt_.analyzePattern(A_);
   if (settings_.solver == LinearSolverKind::lu) lu_.analyzePattern(A_);
-  cg_.setTolerance(settings_.cg_tolerance);
-  cg_.setMaxIterations(settings_.cg_max_iterations);
 }
 
 namespace {
@@ -76,14 +74,16 @@ bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
       dv = lu_.solve(rhs);
       break;
     case LinearSolverKind::cg:
-      cg_.compute(A_);  // the Jacobi preconditioner: the diagonal, O(n)
+      // The block-Jacobi preconditioner: each particle's 3x3 diagonal block inverted, O(n).
+      if (!cg_.compute(A_)) return false;
       timing_.factorization += seconds_since(t0);
       t0 = clock::now();
       // The first update of a step resembles the previous step's, so it seeds CG; later updates start at 0.
-      if (warm_start) dv = cg_.solveWithGuess(rhs, warm_dv_);
-      else dv = cg_.solve(rhs);
+      if (warm_start) dv = warm_dv_;
+      else dv.setZero();
+      const bool converged = cg_.solve(A_, rhs, dv, settings_.cg_tolerance, settings_.cg_max_iterations);
       counters_.cg_iterations += cg_.iterations();
-      if (cg_.info() != Eigen::Success) return false;
+      if (!converged) return false;
       break;
   }
   ++counters_.linear_solves;

@@ -2,9 +2,9 @@
 // the analytic sparse Jacobian J = M - h df/dv - h^2 df/dx, then x1 = x0 + h v1.
 #pragma once
 
+#include "integrators/pcg.hpp"
 #include "integrators/stepper.hpp"
 
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <memory>
@@ -16,7 +16,7 @@ namespace cloth {
 /// How each Newton system J dv = -r is solved.
 enum class LinearSolverKind {
   ldlt,  ///< sparse LDL^T, fill-reducing ordering analysed once per scene, numeric factorization per iteration
-  cg,    ///< conjugate gradients with a Jacobi preconditioner, warm-started; needs the definite matrix
+  cg,    ///< conjugate gradients with a block-Jacobi (3x3) preconditioner, warm-started; needs the definite matrix
   lu     ///< sparse LU: the only choice for the exact, non-symmetric Jacobian of a damped cloth
 };
 const char* linear_solver_name(LinearSolverKind kind);
@@ -62,7 +62,7 @@ class ImplicitEuler final : public Stepper {
   NewtonSettings settings_;
   SparseMatrix A_;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
-  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg_;
+  BlockJacobiPCG cg_;
   Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu_;
   Vector v1_, x1_, f_, r_, dv_, warm_dv_;
   std::vector<double> residuals_;
