@@ -1,0 +1,173 @@
+# Chapter 5 figures: the report's Figures 2-7 as strain-coloured meshes, the overview grid, energy and sag against
+# time, one animation per run, and the K x D sweep as heat maps.
+# Called as: gnuplot -e "data='DIR'; plots='DIR'" plot.gp; DIR/runs.gp (written by the program) says which frame
+# of each mesh file to draw and what the labels say.
+load data.'/runs.gp'
+run_index(m, c) = (m - 1) * nconfigs + c
+mesh(r) = data.'/mesh_'.run_name[r].'.dat'
+series(r) = data.'/series_'.run_name[r].'.dat'
+method_color(m) = m == 1 ? "#d62728" : m == 2 ? "#9467bd" : m == 3 ? "#1f77b4" : "#2ca02c"
+
+# Strain s = (l - L0)/L0 spans -1 (collapsed) to about 100 here, so the colour is asinh(s / 0.05): linear near 0,
+# logarithmic beyond; the tics are labelled in strain itself.
+sc(s) = asinh(s / 0.05)
+set palette defined (sc(-1) "#08306b", sc(-0.1) "#4292c6", 0 "#a0a0a0", sc(0.1) "#fec44f", sc(1) "#ec7014", \
+                     sc(10) "#cb181d", sc(100) "#3f007d")
+set cbrange [sc(-1):sc(100)]
+set cbtics ("-1" sc(-1), "-0.1" sc(-0.1), "0" 0, "0.1" sc(0.1), "1" sc(1), "10" sc(10), "100" sc(100))
+set cblabel "strain (l - L_0)/L_0"
+
+# Draws block b of run r's mesh; the spring colour is column 4.
+set xyplane at 0
+set view 62, 32
+set ticslevel 0
+set xlabel "x [m]" offset 0,-0.5
+set ylabel "y [m]" offset 0,-0.5
+set zlabel "z [m]" rotate by 90 offset 1,0
+set border 4095 lc rgb "#808080"
+unset key
+
+# ---- one sheet per report figure: the cloth at t = 0.05 T, 0.25 T, 0.5 T, T ----
+set terminal pngcairo size 1300,1000 enhanced font "Sans,11"
+do for [f = 1:6] {
+  r = fig_run[f]
+  set output sprintf("%s/ch05_figure%d.png", plots, fig_number[f])
+  set multiplot layout 2,2 title sprintf("%s\n{/*0.85 %s, h = %g s: structural springs coloured by strain (%s)}", \
+      fig_caption[f], run_method[r], h, run_status[r]) font ",14"
+  do for [i = 1:ninstants] {
+    k = (r - 1) * ninstants + i
+    set title instant_label[k]
+    splot mesh(r) index instant_block[k] using 1:2:3:(sc($4)) with lines lw 1.5 lc palette
+  }
+  unset multiplot
+}
+
+# ---- overview: methods in rows, configurations in columns, the cloth at t = T/2 ----
+set terminal pngcairo size 1500,1700 enhanced font "Sans,10"
+set output plots.'/ch05_overview.png'
+set multiplot layout nmethods, nconfigs title sprintf("All methods at t = %g s, h = %g s (rows: methods; columns: K [N/m], D [N s/m]); springs coloured by strain", t_end / 2, h) font ",14"
+unset colorbox
+do for [m = 1:nmethods] {
+  do for [c = 1:nconfigs] {
+    r = run_index(m, c)
+    k = (r - 1) * ninstants + 3
+    set title sprintf("{/:Bold %s, K = %g, D = %g}\n%s%s", run_method[r], cfg_K[c], cfg_D[c], run_status[r], \
+                      run_t_reached[r] < t_end / 2 ? sprintf("\nshowing its last sane frame, t = %g s", run_t_reached[r]) : "")
+    splot mesh(r) index instant_block[k] using 1:2:3:(sc($4)) with lines lw 1 lc palette
+  }
+}
+unset multiplot
+set colorbox
+
+# ---- energy and sag against time, one panel per configuration, every method ----
+reset
+load data.'/runs.gp'
+set terminal pngcairo size 1500,520 enhanced font "Sans,11"
+set grid
+set key top left
+set output plots.'/ch05_energy.png'
+set multiplot layout 1, nconfigs title sprintf("Total energy E(t) / E(0), E(0) = 79.2 kJ, h = %g s (a curve ends where its run diverged)", h) font ",13"
+do for [c = 1:nconfigs] {
+  set title sprintf("K = %g N/m, D = %g N s/m", cfg_K[c], cfg_D[c])
+  if (cfg_logscale[c]) { set logscale y; set format y "10^{%T}"; set yrange [*:*] } else { unset logscale y; set format y "%g" }
+  set xlabel "t [s]"
+  set ylabel "E(t) / E(0)" . (cfg_logscale[c] ? " (log scale)" : "")
+  plot for [m = 1:nmethods] series(run_index(m, c)) using 1:3 with lines lw 2 lc rgb method_color(m) title run_method[run_index(m, c)]
+}
+unset multiplot
+
+unset logscale y
+set format y "%g"
+set key bottom right
+set output plots.'/ch05_sag.png'
+set multiplot layout 1, nconfigs title sprintf("Lowest free particle of the cloth, min z, h = %g s (a curve leaving the frame is a run blowing up)", h) font ",13"
+do for [c = 1:nconfigs] {
+  set title sprintf("K = %g N/m, D = %g N s/m", cfg_K[c], cfg_D[c])
+  set xlabel "t [s]"
+  set ylabel "lowest z [m]"
+  set yrange [cfg_sag_low[c]:*]
+  plot for [m = 1:nmethods] series(run_index(m, c)) using 1:4 with lines lw 2 lc rgb method_color(m) title run_method[run_index(m, c)]
+}
+unset multiplot
+set yrange [*:*]
+
+# ---- one small animation per run: the mesh every T/20, then the last sane frame of a diverged run ----
+reset
+load data.'/runs.gp'
+sc(s) = asinh(s / 0.05)
+set palette defined (sc(-1) "#08306b", sc(-0.1) "#4292c6", 0 "#a0a0a0", sc(0.1) "#fec44f", sc(1) "#ec7014", \
+                     sc(10) "#cb181d", sc(100) "#3f007d")
+set cbrange [sc(-1):sc(100)]
+unset colorbox
+unset key
+set view 62, 32
+set xyplane at 0
+set border 4095 lc rgb "#808080"
+set tics font ",8"
+set xlabel "x [m]"
+set ylabel "y [m]"
+set zlabel "z [m]" rotate by 90
+do for [r = 1:nmethods * nconfigs] {
+  set terminal gif animate delay 15 loop 0 optimize size 400,340 font "Sans,9"
+  set output sprintf("%s/ch05_%s.gif", plots, run_name[r])
+  b = (r - 1) * 6
+  set xrange [run_box[b + 1]:run_box[b + 2]]
+  set yrange [run_box[b + 3]:run_box[b + 4]]
+  set zrange [run_box[b + 5]:run_box[b + 6]]
+  last = run_blocks[r] - 1
+  do for [k = 0:last] {
+    t = (k == last) ? run_t_reached[r] : k * t_end / 20
+    set title sprintf("%s, K = %g, D = %g, h = %g s\nt = %.2f s%s", run_method[r], cfg_K[(r - 1) % nconfigs + 1], \
+      cfg_D[(r - 1) % nconfigs + 1], h, t, (k == last && run_t_reached[r] < t_end) ? ": ".run_status[r] : "")
+    splot mesh(r) index k using 1:2:3:(sc($4)) with lines lc palette
+  }
+  set output
+}
+
+# ---- the sweep: one heat map per method over K x D ----
+reset
+load data.'/runs.gp'
+sweep = data.'/sweep.dat'
+Klabels = "10 25 50 100 200 500 1000"
+Dlabels = "0 1 5 20"
+set xtics () ; do for [i = 1:7] { set xtics add (word(Klabels, i) i - 1) }
+set ytics () ; do for [i = 1:4] { set ytics add (word(Dlabels, i) i - 1) }
+set xrange [-0.5:6.5]
+set yrange [-0.5:3.5]
+set xlabel "K [N/m]"
+set ylabel "D [N s/m]"
+set tics nomirror
+unset key
+array sweep_title[4] = ["explicit Euler", "symplectic Euler", "RK4", "implicit Euler"]
+# Gain: log10 of max_t (E(t) - E(0))/|E(0)|, floored at 1e-8 (a method that never added energy shows 0 there).
+gain_colour(g) = log10(g > 1e-8 ? g : 1e-8)
+# (The cell texts are written inline: gnuplot 5.4 mislabels `with labels` when the text comes from a user function.)
+set palette defined (-8 "#f7fbff", -6 "#c6dbef", -4 "#6baed6", -2 "#fdae6b", 0 "#e6550d", 2 "#7f2704")
+
+set terminal pngcairo size 1400,900 enhanced font "Sans,11"
+set output plots.'/ch05_sweep_gain.png'
+set multiplot layout 2,2 title sprintf("Energy gain max_t (E(t) - E(0))/|E(0)| over the K x D sweep, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 The exact solution never gains energy (it conserves it for D = 0 and loses it for D > 0): any gain is the method's error. Grey: the run diverged or its Newton iteration failed.}", h, t_end, sweep_t_end_implicit) font ",12"
+set cbrange [-8:2]
+set cbtics ("≤1e-8" -8, "1e-6" -6, "1e-4" -4, "0.01" -2, "1" 0, "100" 2)
+unset cblabel
+do for [m = 0:3] {
+  set title sweep_title[m + 1]
+  plot sweep index m using 2:3:(column(6) == 0 ? gain_colour(column(8)) : NaN) with image, \
+       '' index m using (column(6) != 0 ? column(2) : NaN):3:(0.5):(0.5) with boxxyerror fs solid 1.0 noborder lc rgb "#909090", \
+       '' index m using 2:3:(column(6) == 1 ? sprintf("diverged\n%.2f s", column(7)) : column(6) == 2 ? sprintf("Newton failed\n%.2f s", column(7)) : column(8) == 0 ? "0" : sprintf("%.1e", column(8))) with labels font ",9"
+}
+unset multiplot
+
+set output plots.'/ch05_sweep_final.png'
+set multiplot layout 2,2 title sprintf("Energy at the end relative to the start, (E(T) - E(0))/|E(0)|, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 Negative: energy lost (dampers, or the method's numerical damping); positive: energy gained. Grey: diverged or Newton failed.}", h, t_end, sweep_t_end_implicit) font ",12"
+set palette defined (-1 "#08519c", -0.3 "#6baed6", 0 "#f7f7f7", 0.3 "#fc9272", 1 "#a50f15")
+set cbrange [-1:1]
+set cbtics ("≤ -1" -1, "-0.5" -0.5, "0" 0, "0.5" 0.5, "≥ 1" 1)
+unset cblabel
+do for [m = 0:3] {
+  set title sweep_title[m + 1]
+  plot sweep index m using 2:3:(column(6) == 0 ? (column(9) < -1 ? -1 : column(9) > 1 ? 1 : column(9)) : NaN) with image, \
+       '' index m using (column(6) != 0 ? column(2) : NaN):3:(0.5):(0.5) with boxxyerror fs solid 1.0 noborder lc rgb "#909090", \
+       '' index m using 2:3:(column(6) == 1 ? sprintf("diverged\n%.2f s", column(7)) : column(6) == 2 ? sprintf("Newton failed\n%.2f s", column(7)) : abs(column(9)) < 0.01 ? sprintf("%.1e", column(9)) : abs(column(9)) >= 10 ? sprintf("%.3g", column(9)) : sprintf("%.2f", column(9))) with labels font ",9"
+}
+unset multiplot
