@@ -1,0 +1,61 @@
+// The spectrum of the linearised cloth (Chapter 7): the eigenvalues lambda of the first-order system
+// y' = J y, J = [[0, I], [M^{-1} df/dx, M^{-1} df/dv]], y = (dx, dv), built from the model's own Jacobians, and
+// the sagged static equilibrium about which the cloth is linearised.
+#pragma once
+
+#include "cloth/force_field.hpp"
+
+#include <array>
+#include <complex>
+#include <vector>
+
+namespace cloth {
+
+/// The dense 2n x 2n matrix J at (x, v); n = 3 n_free. For small grids only (a 20 x 20 cloth gives 2376 x 2376).
+Eigen::MatrixXd linearised_system(ForceField& field, const Vector& x, const Vector& v);
+
+/// Every eigenvalue of J, by Eigen's dense non-symmetric eigen-solver (O(n^3): small grids).
+std::vector<std::complex<double>> dense_spectrum(ForceField& field, const Vector& x, const Vector& v);
+
+/// The eigenvalues omega^2 of -M^{-1} df/dx at (x, v = 0), ascending, by the symmetric eigen-solver: with v = 0
+/// the damper adds nothing to df/dx, so df/dx is the (symmetric) Hessian of -E. A negative omega^2 is a buckling
+/// direction (a compressed spring's transverse term).
+std::vector<double> stiffness_eigenvalues(ForceField& field, const Vector& x);
+
+/// The two eigenvalues of one mode x'' = -omega^2 x - c x', roots of lambda^2 + c lambda + omega^2 = 0.
+std::array<std::complex<double>, 2> mode_eigenvalues(double omega2, double c);
+
+/// The spectrum of J when df/dv = beta df/dx (damping proportional to stiffness, as at the rest state, where
+/// both are Laplacians of the same springs: df/dx = -K L, df/dv = -D L, beta = D/K): every omega^2 gives a mode
+/// with c = beta omega^2. Exact then, and cheap: one symmetric eigenproblem serves every (K, D).
+std::vector<std::complex<double>> proportional_spectrum(const std::vector<double>& omega2, double beta);
+
+/// Largest |lambda| of J at (x, v) without forming J: power iteration on sparse products with df/dx and df/dv.
+/// The dominant eigenvalues of a real J are often a conjugate pair, which a plain power iteration cannot
+/// isolate, so each iteration fits y2 + p y1 + q y0 = 0 to three successive iterates by least squares and takes
+/// the larger root of mu^2 + p mu + q (Wilkinson 1965, ch. 9). Stops when the estimate changes by less than
+/// `tolerance` relatively over 10 iterations.
+struct PowerIterationResult {
+  double magnitude = 0;
+  std::complex<double> dominant;  ///< the root of larger magnitude (Im >= 0 of a conjugate pair)
+  int iterations = 0;
+  bool converged = false;
+};
+PowerIterationResult largest_eigenvalue_magnitude(ForceField& field, const Vector& x, const Vector& v,
+                                                  double tolerance = 1e-6, int max_iterations = 5000);
+
+/// The static equilibrium f(x, 0) = 0 the cloth sags to under gravity.
+struct Equilibrium {
+  Vector x;
+  int iterations = 0;
+  double residual = 0;  ///< |f|_inf at x [N]
+  bool converged = false;
+};
+
+/// Finds it by pseudo-time stepping: from the rest state, repeated implicit Euler steps of length tau from rest
+/// (velocity reset each step), (M - tau^2 df/dx) dx = tau^2 f, which is Newton's method regularised by M / tau^2.
+/// tau doubles while the energy falls and shrinks when it would rise, so the iteration turns into Newton's method
+/// near the minimum. Converged when |f|_inf <= tolerance m g.
+Equilibrium static_equilibrium(ForceField& field, double tolerance = 1e-9, int max_iterations = 300);
+
+}  // namespace cloth

@@ -1,0 +1,58 @@
+// Stability functions and amplification factors: the linear theory that predicts when each method is stable.
+#include "integrators/stability_function.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace cloth {
+
+Complex stability_function(const ButcherTableau& tableau, Complex z) {
+  const int s = tableau.stages();
+  const Eigen::MatrixXcd I_minus_zA = Eigen::MatrixXcd::Identity(s, s) - z * tableau.A.cast<Complex>();
+  // The stage values of y' = lambda y with y0 = 1 solve (I - z A) Y = 1; then R = 1 + z b^T Y.
+  const Eigen::VectorXcd Y = I_minus_zA.partialPivLu().solve(Eigen::VectorXcd::Ones(s));
+  return 1.0 + z * tableau.b.cast<Complex>().dot(Y);
+}
+
+Complex implicit_euler_stability(Complex z) { return 1.0 / (1.0 - z); }
+
+double symplectic_euler_amplification(Complex z1, Complex z2) {
+  // h^2 a = -z1 z2 and h b = z1 + z2 are real when z1, z2 are a conjugate pair or both real.
+  const double h2a = -(z1 * z2).real();
+  const double hb = (z1 + z2).real();
+  const double trace = 2 + h2a + hb;
+  const double det = 1 + hb;
+  // Eigenvalues of the 2 x 2 matrix: mu^2 - trace mu + det = 0.
+  const Complex root = std::sqrt(Complex(trace * trace - 4 * det, 0.0));
+  return std::max(std::abs(0.5 * (trace + root)), std::abs(0.5 * (trace - root)));
+}
+
+bool symplectic_euler_stable(double h2a, double hb) {
+  const double det = 1 + hb;
+  const double trace = 2 + h2a + hb;
+  return std::abs(det) <= 1 && std::abs(trace) <= 1 + det;
+}
+
+double stability_limit_along(const std::function<bool(double)>& stable, double t_max, int scan, int iterations) {
+  double lo = 0;
+  double hi = t_max;
+  bool left = false;
+  for (int k = 1; k <= scan; ++k) {
+    const double t = t_max * k / scan;
+    if (!stable(t)) {
+      hi = t;
+      left = true;
+      break;
+    }
+    lo = t;
+  }
+  if (!left) return t_max;
+  for (int k = 0; k < iterations; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (stable(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+}  // namespace cloth

@@ -1,0 +1,39 @@
+// Linear stability theory of the book's integrators (Chapter 7): the stability function R(z) of a Runge-Kutta
+// method computed from its Butcher tableau, implicit Euler's 1/(1 - z), and symplectic Euler's amplification of
+// one damped oscillator mode, which is a 2 x 2 matrix rather than a scalar function of z.
+#pragma once
+
+#include "integrators/butcher_tableau.hpp"
+
+#include <complex>
+#include <functional>
+
+namespace cloth {
+
+using Complex = std::complex<double>;
+
+/// R(z) = 1 + z b^T (I - z A)^{-1} 1: one step of the tableau's method applied to y' = lambda y multiplies y by
+/// R(h lambda) (Hairer & Wanner 1996, IV.2). Computed from A and b, never typed in; for an explicit tableau it is
+/// the polynomial sum_k z^k b^T A^{k-1} 1.
+Complex stability_function(const ButcherTableau& tableau, Complex z);
+
+/// Implicit Euler on y' = lambda y: y1 = y0 / (1 - z), so R(z) = 1 / (1 - z); A-stable (|R| <= 1 for Re z <= 0).
+Complex implicit_euler_stability(Complex z);
+
+/// Symplectic Euler on one mode x'' = a x + b x' (v1 = v0 + h (a x0 + b v0), x1 = x0 + h v1) multiplies (x, v) by
+/// the 2 x 2 matrix [[1 + h^2 a, h (1 + h b)], [h a, 1 + h b]]; this returns its spectral radius. The mode's two
+/// eigenvalues lambda1, lambda2 as a first-order system fix a = -lambda1 lambda2 and b = lambda1 + lambda2, so the
+/// arguments are z1 = h lambda1 and z2 = h lambda2 (a conjugate pair for an underdamped mode).
+double symplectic_euler_amplification(Complex z1, Complex z2);
+
+/// The Jury conditions for that matrix (trace T = 2 + h^2 a + h b, determinant 1 + h b): stable when
+/// |1 + h b| <= 1 and |T| <= 1 + (1 + h b). For an undamped oscillator (b = 0, a = -omega^2) this is h omega <= 2.
+bool symplectic_euler_stable(double h2a, double hb);
+
+/// The largest t in [0, t_max] such that stable(s) holds for every s in [0, t] sampled by bisection: the edge of
+/// a stability interval along a ray. Bisects `iterations` times after a coarse scan of `scan` points, so that a
+/// region that is left and re-entered (as RK4's is near the imaginary axis) is not mistaken for a connected one.
+double stability_limit_along(const std::function<bool(double)>& stable, double t_max, int scan = 400,
+                             int iterations = 60);
+
+}  // namespace cloth
