@@ -15,6 +15,26 @@ using namespace cloth;
 
 namespace {
 
+// [fastest_damping_rate]
+// The fastest damping rate c_max of the cloth at (x, v): the largest eigenvalue of -M^{-1} df/dv, by power
+// iteration (the projected damper gives df/dv = -D sum u u^T over springs, symmetric negative semidefinite).
+// A mode damped at rate c is a real eigenvalue -c of the ODE, and an explicit method is stable on it only while
+// h c stays inside its stability interval on the negative real axis: 2 for euler, 2.785 for rk4.
+double fastest_damping_rate(ForceField& field, const Vector& x, const Vector& v) {
+  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
+  field.jacobians(x, v, dfdx, dfdv);
+  Vector q = Vector::Ones(x.size()) + Vector::LinSpaced(x.size(), 0.0, 1.0);
+  double c = 0;
+  for (int k = 0; k < 1000; ++k) {
+    const Vector w = -(dfdv * q) / field.scene().params().mass;
+    c = q.dot(w) / q.squaredNorm();
+    if (w.norm() == 0) break;  // undamped
+    q = w.normalized();
+  }
+  return c > 0 ? c : 0.0;
+}
+// [fastest_damping_rate]
+
 // One run of the cloth with `tableau`, outputs in `dir`, plus lowest_point.dat (t, lowest z of the cloth) from
 // the recorded frames. Returns report()'s exit status.
 int run_cloth(const SceneParams& params, RunSettings run, const ButcherTableau& tableau, const std::string& source,
@@ -24,9 +44,16 @@ int run_cloth(const SceneParams& params, RunSettings run, const ButcherTableau& 
   ExplicitRungeKutta stepper(field, tableau);
   run.out_dir = dir;
   prepare_output_dir(dir);
+  const double hc_start = run.dt * fastest_damping_rate(field, scene.initial_positions(), scene.initial_velocities());
   const RunResult result = simulate(stepper, run);
+  const double hc_end = run.dt * fastest_damping_rate(field, result.x, result.v);
+  char hc[2][32];
+  std::snprintf(hc[0], sizeof hc[0], "%.4g", hc_start);
+  std::snprintf(hc[1], sizeof hc[1], "%.4g", hc_end);
   write_outputs(result, stepper, run,
-                {{"tableau", tableau.name},
+                {{"h_c_max_start", hc[0]},
+                 {"h_c_max_end", hc[1]},
+                 {"tableau", tableau.name},
                  {"tableau_source", source},
                  {"stages", std::to_string(tableau.stages())},
                  {"order", std::to_string(tableau.order)}});
