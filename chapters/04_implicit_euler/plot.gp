@@ -37,8 +37,8 @@ set ylabel "Newton iterations in the step"
 unset logscale y
 set format y "%g"
 set xrange [0:2]
-set yrange [0:22]
+set yrange [0:26]
 set key top left
 plot data.'/iterations_symmetric.dat' using 1:2 with steps lw 2 lc rgb "#1f77b4" title "symmetric (exact Hessian)", \
-     data.'/iterations_definite.dat'  using 1:2 with steps lw 2 lc rgb "#d62728" title "definite (Choi & Ko): stalls at t = 1.41 s", \
+     data.'/iterations_definite.dat'  using 1:2 with steps lw 2 lc rgb "#d62728" title "definite (Choi and Ko): stalls at t = 1.41 s", \
      20 with lines dt 2 lc rgb "black" title "--newton-max-iter 20"
