@@ -114,10 +114,22 @@ std::string outcome(const RunResult& r, double h) {
 double divergence_time(const RunResult& r, double h) { return diverged(r) ? r.t + h : std::nan(""); }
 
 // [stiffness_eigenvalue]
-// Largest eigenvalue lambda of -df/dx / (m K) at the rest state, by power iteration. At rest no spring is under
-// tension, so -df/dx = K sum u u^T (one 3x3 block per spring) and the highest mode's frequency is
-// omega_max = sqrt(lambda K / m). The projected dampers have the same matrix with D for K, so the fastest damped
-// mode decays at rate lambda D / m. These set the stability limits of Chapters 2-4 for each (K, D).
+// Largest eigenvalue of a symmetric positive semi-definite matrix S, by power iteration.
+double largest_eigenvalue(const SparseMatrix& S) {
+  Vector y = Vector::LinSpaced(S.rows(), 1.0, 2.0);
+  double lambda = 0;
+  for (int it = 0; it < 5000; ++it) {
+    const Vector z = S * y;
+    lambda = y.dot(z) / y.dot(y);
+    y = z / z.norm();
+  }
+  return lambda;
+}
+
+// Largest eigenvalue lambda of -df/dx / (m K) at the rest state. At rest no spring is under tension, so
+// -df/dx = K sum u u^T (one 3x3 block per spring) and the highest mode's frequency is omega_max = sqrt(lambda K / m).
+// The projected dampers have -df/dv = D sum u u^T, the same matrix with D for K, so the fastest damped mode decays
+// at rate lambda D / m. These set the stability limits of Chapters 2-4 for each (K, D).
 double rest_stiffness_eigenvalue(const SceneParams& base) {
   SceneParams p = base;
   p.stiffness = 1;
@@ -127,14 +139,22 @@ double rest_stiffness_eigenvalue(const SceneParams& base) {
   SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
   const Vector x = scene.initial_positions();
   field.jacobians(x, Vector::Zero(x.size()), dfdx, dfdv);
-  Vector y = Vector::LinSpaced(x.size(), 1.0, 2.0);
-  double lambda = 0;
-  for (int it = 0; it < 5000; ++it) {
-    const Vector z = -(dfdx * y) / p.mass;
-    lambda = y.dot(z) / y.dot(y);
-    y = z / z.norm();
-  }
-  return lambda;
+  return largest_eigenvalue(-dfdx / p.mass);
+}
+
+// The same damping eigenvalue, lambda_D = largest eigenvalue of sum u u^T / m, on a deformed cloth (every particle's
+// positions in grid order): u now points wherever the springs point, so lambda_D moves away from its rest value.
+double damping_eigenvalue(const SceneParams& base, const Vector& positions) {
+  SceneParams p = base;
+  p.stiffness = 1;  // any K > 0: df/dv of the projected dampers does not depend on it
+  p.damping = 1;
+  const Scene scene(p);
+  ForceField field(scene);
+  Vector x(scene.dof_count());
+  for (int s = 0; s < scene.free_count(); ++s) x.segment<3>(3 * s) = positions.segment<3>(3 * scene.particle_of_slot(s));
+  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
+  field.jacobians(x, Vector::Zero(x.size()), dfdx, dfdv);
+  return largest_eigenvalue(-dfdv / p.mass);
 }
 // [stiffness_eigenvalue]
 
@@ -370,6 +390,20 @@ int main(int argc, char** argv) {
           std::printf("%5g %4g %10.4g %9.4g %15.4g %15.4g %12.4g\n", K, D, omega, ho, 1 + ho * ho,
                       std::pow(1 + ho * ho, T / h), rate);
       }
+    // The damped runs' fastest damped mode on the cloth as it deforms: h lambda_D D / m against the real-axis
+    // stability limits, 2 for explicit Euler and 2.785 for RK4 (Chapter 3).
+    for (std::size_t r = 0; r < nr; ++r) {
+      const Run& run = runs[r];
+      if (run.D == 0 || run.method != "implicit_euler") continue;
+      for (std::size_t k = 0; k < run.result.frames.size(); k += run.result.frames.size() / 4) {
+        const Frame& f = run.result.frames[k];
+        const double lambda_d = damping_eigenvalue(sp, f.positions);
+        std::fprintf(theory, "deformed_damping K = %g D = %g t = %g lambda_D = %.4g h_lambda_D_D_over_m = %.4g\n", run.K,
+                     run.D, f.t, lambda_d, h * lambda_d * run.D / sp.mass);
+        std::printf("implicit Euler K = %g, D = %g, t = %4.2f s: lambda_D = %.4g, h lambda_D D / m = %.4g\n", run.K,
+                    run.D, f.t, lambda_d, h * lambda_d * run.D / sp.mass);
+      }
+    }
     std::fclose(theory);
 
     // ---- the sweep ----
