@@ -1,0 +1,325 @@
+// The studies of Chapter 6 (see studies.hpp). Runs are timed in-process, without I/O inside the timed region.
+#include "studies.hpp"
+
+#include "timing.hpp"
+
+#include "integrators/explicit_euler.hpp"
+#include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/implicit_euler.hpp"
+#include "integrators/simulate.hpp"
+#include "integrators/symplectic_euler.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace ch06 {
+
+using namespace cloth;
+
+namespace {
+
+const ButcherTableau& tableau(const std::string& name) {
+  for (const ButcherTableau& t : builtin_tableaus())
+    if (t.name == name) return t;
+  return builtin_tableaus().front();
+}
+
+cloth::SceneParams with(const SceneParams& base, double K, double D) {
+  SceneParams p = base;
+  p.stiffness = K;
+  p.damping = D;
+  return p;
+}
+
+double max_particle_distance(const Vector& a, const Vector& b) {
+  double worst = 0;
+  for (Eigen::Index k = 0; k + 2 < a.size(); k += 3) worst = std::max(worst, (a.segment<3>(k) - b.segment<3>(k)).norm());
+  return worst;
+}
+
+std::FILE* open(const Sink& sink, const std::string& name, const char* header) {
+  std::FILE* f = std::fopen((sink.dir + "/" + name).c_str(), "w");
+  std::fprintf(f, "%s\n", header);
+  return f;
+}
+
+}  // namespace
+
+const std::vector<std::string>& sweep_methods() {
+  static const std::vector<std::string> names = {
+      "explicit_euler",      "symplectic_euler",  "heun",
+      "rk4",                 "rule38",            "implicit_euler_ldlt",
+      "implicit_euler_cg",   "implicit_euler_1newton_ldlt", "implicit_euler_1newton_cg"};
+  return names;
+}
+
+std::unique_ptr<Stepper> make_method(const std::string& name, ForceField& field) {
+  if (name == "explicit_euler") return std::make_unique<ExplicitEuler>(field);
+  if (name == "symplectic_euler") return std::make_unique<SymplecticEuler>(field);
+  if (name == "heun" || name == "rk4" || name == "rule38")
+    return std::make_unique<ExplicitRungeKutta>(field, tableau(name));
+  NewtonSettings s;
+  const bool cg = name.find("_cg") != std::string::npos;
+  s.solver = cg ? LinearSolverKind::cg : LinearSolverKind::ldlt;
+  // CG needs the definite matrix; LDL^T takes the symmetric one (Chapter 4's default).
+  s.treatment = cg ? StiffnessTreatment::definite : StiffnessTreatment::symmetric;
+  if (name.find("1newton") != std::string::npos) s.max_iterations = 1;
+  return std::make_unique<ImplicitEuler>(field, s);
+}
+
+Trajectory run_sampled(Stepper& stepper, double T, long long steps, int samples) {
+  const Scene& scene = stepper.field().scene();
+  Trajectory out;
+  out.x.assign(static_cast<std::size_t>(samples) + 1, Vector(scene.dof_count()));
+  Vector x = scene.initial_positions(), v = scene.initial_velocities();
+  out.x[0] = x;
+  const double h = T / static_cast<double>(steps);
+  const long long per_sample = steps / samples;
+  const double radius = divergence_radius(scene, T);
+  for (long long k = 0; k < steps; ++k) {
+    if (!stepper.step(h, x, v)) {
+      out.ok = false;
+      out.message = "step failed at t = " + std::to_string((k + 1) * h);
+      return out;
+    }
+    if ((k + 1) % per_sample == 0) {
+      if (!divergence_reason(x, v, radius).empty()) {
+        out.ok = false;
+        out.message = "diverged by t = " + std::to_string((k + 1) * h);
+        return out;
+      }
+      out.x[static_cast<std::size_t>((k + 1) / per_sample)] = x;
+    }
+  }
+  return out;
+}
+
+// [near_zero]
+// The smallest spring length relative to rest, l / L0, over the cloth and over time: where and when springs pass
+// near zero length, where the force direction u = d / l turns abruptly and the right-hand side is not smooth.
+void near_zero_springs(const SceneParams& base, double T, double h, const Sink& sink) {
+  const Scene scene(base);
+  ForceField field(scene);
+  ExplicitRungeKutta rk4(field, tableau("rk4"));
+  Vector x = scene.initial_positions(), v = scene.initial_velocities();
+  Vector all(3 * scene.particle_count());
+  const auto steps = static_cast<long long>(std::llround(T / h));
+  std::FILE* f = open(sink, "near_zero.dat", "# t min_l_over_L0 family(0 structural,1 shear,2 flexion) i_p j_p i_q j_q");
+  double global_min = 1e300, t_min = 0;
+  int spring_min = -1;
+  const auto& springs = scene.springs();
+  for (long long k = 0; k <= steps; ++k) {
+    if (k > 0) rk4.step(h, x, v);
+    scene.all_positions(x, all);
+    double worst = 1e300;
+    int which = 0;
+    for (int s = 0; s < springs.size(); ++s) {
+      const Spring& sp = springs.springs[static_cast<std::size_t>(s)];
+      const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q);
+      const double l = (all.segment<3>(3 * p) - all.segment<3>(3 * q)).norm() / sp.rest_length;
+      if (l < worst) worst = l, which = s;
+    }
+    const Spring& sp = springs.springs[static_cast<std::size_t>(which)];
+    int family = 0;
+    for (SpringFamily fam : all_spring_families)
+      if (which >= springs.family[static_cast<int>(fam)].begin && which < springs.family[static_cast<int>(fam)].end)
+        family = static_cast<int>(fam);
+    const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q);
+    const int N = scene.grid().N;
+    std::fprintf(f, "%.6f %.6e %d %d %d %d %d\n", k * h, worst, family, p / N, p % N, q / N, q % N);
+    if (worst < global_min) global_min = worst, t_min = k * h, spring_min = which;
+    if (k * h <= 1.0 + 1e-12) {
+      std::fprintf(sink.table, "near_zero K%g_D%g - %.6f - - %.6e - - - - - - ok\n", base.stiffness, base.damping,
+                   k * h, worst);
+    }
+  }
+  std::fclose(f);
+  const Spring& sp = springs.springs[static_cast<std::size_t>(spring_min)];
+  const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q), N = scene.grid().N;
+  std::printf("near-zero springs (K %g, D %g, rk4 h %g): smallest l/L0 = %.3e at t = %.4f s, spring (%d,%d)-(%d,%d)\n",
+              base.stiffness, base.damping, h, global_min, t_min, p / N, p % N, q / N, q % N);
+}
+// [near_zero]
+
+// [sensitivity]
+// Two RK4 runs whose initial positions differ by 1e-12 m in one coordinate (a particle near the middle, in z):
+// the ratio of their largest particle distance to 1e-12 is how much the problem amplifies a perturbation, the
+// condition number of the solution at time t; no method can be checked more accurately than eps times it.
+void sensitivity(const SceneParams& base, const std::vector<Config>& configs, double h, const Sink& sink) {
+  std::FILE* f = open(sink, "sensitivity.dat", "# config K D t amplification  (blocks by config)");
+  const double delta = 1e-12;
+  for (const Config& c : configs) {
+    const Scene scene(with(base, c.K, c.D));
+    ForceField fa(scene), fb(scene);
+    ExplicitRungeKutta a(fa, tableau("rk4")), b(fb, tableau("rk4"));
+    Vector xa = scene.initial_positions(), va = scene.initial_velocities();
+    Vector xb = xa, vb = va;
+    xb[3 * (scene.free_count() / 2) + 2] += delta;
+    const double T = 1.0;
+    const auto steps = static_cast<long long>(std::llround(T / h));
+    const long long every = std::max(1LL, steps / 200);
+    std::fprintf(f, "# %s\n", c.name.c_str());
+    for (long long k = 0; k <= steps; ++k) {
+      if (k > 0) a.step(h, xa, va), b.step(h, xb, vb);
+      if (k % every == 0) {
+        const double amp = max_particle_distance(xa, xb) / delta;
+        std::fprintf(f, "%s %g %g %.6f %.6e\n", c.name.c_str(), c.K, c.D, k * h, amp);
+        std::fprintf(sink.table, "sensitivity %s - %.6f - - - %.6e - - - - - ok\n", c.name.c_str(), k * h, amp);
+      }
+    }
+    std::fprintf(f, "\n\n");
+  }
+  std::fclose(f);
+}
+// [sensitivity]
+
+// [reference]
+// The reference: RK4 with 2^k_ref steps, checked against the 3/8 rule (a different fourth-order method) with
+// twice as many. Their largest sampled difference is its credential: every error plotted must exceed it 100x.
+Trajectory reference(const SceneParams& base, const Config& c, int samples, int k_ref, const Sink& sink,
+                     double& agreement) {
+  const Scene scene(with(base, c.K, c.D));
+  ForceField f1(scene), f2(scene);
+  ExplicitRungeKutta rk4(f1, tableau("rk4")), rule38(f2, tableau("rule38"));
+  const long long n = 1LL << k_ref;
+  const Trajectory a = run_sampled(rk4, c.T, n, samples);
+  const Trajectory b = run_sampled(rule38, c.T, 2 * n, samples);
+  agreement = 0;
+  for (std::size_t j = 0; j < a.x.size(); ++j) agreement = std::max(agreement, max_particle_distance(a.x[j], b.x[j]));
+  std::printf("reference %s (K %g, D %g, T %g): rk4 with h = T/2^%d and rule38 with h = T/2^%d agree to %.2e m\n",
+              c.name.c_str(), c.K, c.D, c.T, k_ref, k_ref + 1, agreement);
+  std::fprintf(sink.table, "reference %s rk4_vs_rule38 %.6g %lld - %.6e - - - - - - %s\n", c.name.c_str(),
+               c.T / static_cast<double>(n), n, agreement, a.ok && b.ok ? "ok" : "failed");
+  return b;
+}
+// [reference]
+
+// [work_precision]
+void work_precision(const SceneParams& base, const Config& c, const Trajectory& ref, int samples, int k_min,
+                    int k_max, double max_seconds, int runs, double ref_agreement, const Sink& sink) {
+  const Scene scene(with(base, c.K, c.D));
+  std::FILE* f = open(sink, "wp_" + c.name + ".dat",
+                      "# method h steps seconds err_max_T err_rms rhs assemblies factorizations cg_iterations "
+                      "newton_iterations  (blocks by method)");
+  for (const std::string& method : sweep_methods()) {
+    std::fprintf(f, "# %s\n", method.c_str());
+    for (int k = k_min; k <= k_max; ++k) {
+      const long long steps = 1LL << k;
+      const double h = c.T / static_cast<double>(steps);
+      ForceField field(scene);
+      auto stepper = make_method(method, field);
+      // The error run (also the warm-up of the timing runs).
+      const auto t0 = std::chrono::steady_clock::now();
+      Trajectory traj = run_sampled(*stepper, c.T, steps, samples);
+      const double first = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (!traj.ok) {
+        std::fprintf(sink.table, "dropped %s %s %.6g %lld - - - - - - - - %s\n", c.name.c_str(), method.c_str(), h,
+                     steps, traj.message.c_str());
+        std::fprintf(f, "# dropped h = %g: %s\n", h, traj.message.c_str());
+        continue;
+      }
+      const StepCounters counters = stepper->counters();
+      double err_T = max_particle_distance(traj.x.back(), ref.x.back()), sum2 = 0;
+      long long terms = 0;
+      for (std::size_t j = 1; j < traj.x.size(); ++j) {
+        sum2 += (traj.x[j] - ref.x[j]).squaredNorm() / 1.0;
+        terms += traj.x[j].size() / 3;
+      }
+      const double err_rms = std::sqrt(sum2 / static_cast<double>(terms));
+      // An error within 100x of the reference's own uncertainty is not a measurement: listed, not plotted.
+      if (err_T < 100 * ref_agreement) {
+        std::fprintf(sink.table, "dropped %s %s %.6g %lld - %.6e - - - - - - below_100x_reference_agreement\n",
+                     c.name.c_str(), method.c_str(), h, steps, err_T);
+        break;
+      }
+      // Timing: the median of `runs` repeated runs (fewer when one run is already long: then 1 is the median).
+      const int n_runs = first > max_seconds / 5 ? 1 : runs;
+      const Seconds t = n_runs == 1 ? Seconds{first, first} : median_seconds([&] {
+        ForceField fresh(scene);
+        auto s = make_method(method, fresh);
+        run_sampled(*s, c.T, steps, samples);
+      }, n_runs, 0);
+      const auto per = [&](long long v) { return static_cast<double>(v); };
+      std::fprintf(f, "%s %.6e %lld %.6e %.6e %.6e %g %g %g %g %g\n", method.c_str(), h, steps, t.wall, err_T, err_rms,
+                   per(counters.rhs_evaluations), per(counters.jacobian_assemblies), per(counters.factorizations),
+                   per(counters.cg_iterations), per(counters.newton_iterations));
+      std::fprintf(sink.table, "wp %s %s %.6e %lld %.6e %.6e %.6e %lld %lld %lld %lld %lld ok\n", c.name.c_str(),
+                   method.c_str(), h, steps, t.wall, err_T, err_rms, counters.rhs_evaluations,
+                   counters.jacobian_assemblies, counters.factorizations, counters.cg_iterations,
+                   counters.newton_iterations);
+      std::fflush(f);
+      if (err_T < 1e-9 || first > max_seconds) break;  // accurate enough, or expensive enough
+    }
+    std::fprintf(f, "\n\n");
+  }
+  std::fclose(f);
+}
+// [work_precision]
+
+// [scaling]
+// Cost of one step against the grid size, at the report's h = 0.01 for the implicit methods and h = 1e-3 for
+// the explicit ones (the step changes the work per step only through Newton and CG iteration counts).
+void scaling(const SceneParams& base, const std::vector<int>& sizes, int runs, double max_step_seconds,
+             const Sink& sink) {
+  std::FILE* f = open(sink, "scaling.dat",
+                      "# method grid springs seconds_per_step assembly factorization solve newton_per_step "
+                      "cg_per_solve  (blocks by method)");
+  const std::vector<std::string> methods = {"explicit_euler", "rk4", "implicit_euler_ldlt", "implicit_euler_cg"};
+  for (const std::string& method : methods) {
+    std::fprintf(f, "# %s\n", method.c_str());
+    for (int size : sizes) {
+      SceneParams p = base;
+      p.grid.M = p.grid.N = size;
+      const Scene scene(p);
+      ForceField field(scene);
+      auto stepper = make_method(method, field);
+      const bool implicit = method.find("implicit") != std::string::npos;
+      const double h = implicit ? 0.01 : 1e-3;
+      // Start from the state at t = 0.05 s, where the cloth is moving and stretched.
+      Vector x = scene.initial_positions(), v = scene.initial_velocities();
+      for (int k = 0; k < 5; ++k) stepper->step(h, x, v);
+      const Vector x0 = x, v0 = v;
+      const int steps = implicit ? 3 : 10;
+      auto* ie = dynamic_cast<ImplicitEuler*>(stepper.get());
+      if (ie) ie->reset_timing();
+      stepper->reset_counters();
+      int calls = 0;
+      const Seconds t = median_seconds(
+          [&] {
+            x = x0, v = v0;
+            for (int k = 0; k < steps; ++k) stepper->step(h, x, v);
+            ++calls;
+          },
+          runs, 1);
+      const double per_step = t.wall / steps;
+      const auto total_steps = static_cast<double>(stepper->counters().steps);
+      double assembly = 0, factorization = 0, solve = 0;
+      if (ie) {
+        assembly = ie->timing().assembly / total_steps;
+        factorization = ie->timing().factorization / total_steps;
+        solve = ie->timing().solve / total_steps;
+      }
+      const double newton = static_cast<double>(stepper->counters().newton_iterations) / total_steps;
+      const double cg = stepper->counters().linear_solves > 0
+                            ? static_cast<double>(stepper->counters().cg_iterations) /
+                                  static_cast<double>(stepper->counters().linear_solves)
+                            : 0.0;
+      std::fprintf(f, "%s %d %d %.6e %.6e %.6e %.6e %.3f %.2f\n", method.c_str(), size, scene.springs().size(),
+                   per_step, assembly, factorization, solve, newton, cg);
+      std::fprintf(sink.table, "scaling %dx%d %s %.6g %d %.6e - - - - - - - ok\n", size, size, method.c_str(), h,
+                   scene.springs().size(), per_step);
+      std::fflush(f);
+      std::printf("scaling %-20s %4dx%-4d %8d springs %10.3f ms/step (assembly %.3f, factorization %.3f, solve "
+                  "%.3f ms), %.2f Newton/step, %.1f CG/solve\n",
+                  method.c_str(), size, size, scene.springs().size(), 1e3 * per_step, 1e3 * assembly,
+                  1e3 * factorization, 1e3 * solve, newton, cg);
+      if (per_step > max_step_seconds) break;  // larger grids would take minutes
+    }
+    std::fprintf(f, "\n\n");
+  }
+  std::fclose(f);
+}
+// [scaling]
+
+}  // namespace ch06

@@ -1,0 +1,56 @@
+// Chapter 6's studies: where springs pass near zero length, how fast nearby solutions separate, the reference
+// solution and its credentials, the work-precision sweep, and the cost of a step against the grid size.
+#pragma once
+
+#include "cloth/scene.hpp"
+#include "integrators/stepper.hpp"
+
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ch06 {
+
+/// One configuration of the sweep: the report scene with stiffness K and damping D, integrated to T.
+struct Config {
+  std::string name;
+  double K = 50, D = 0, T = 1;
+};
+
+/// A trajectory sampled at t_j = j T / samples, j = 0..samples (positions of the free particles).
+struct Trajectory {
+  std::vector<cloth::Vector> x;
+  bool ok = true;
+  std::string message;
+};
+
+/// Runs `stepper` with 2^k equal steps to T (2^k a multiple of `samples`) and samples it. Stops at the first
+/// failed step or diverged state (ok = false, message says where).
+Trajectory run_sampled(cloth::Stepper& stepper, double T, long long steps, int samples);
+
+/// A method of the sweep by its row name (explicit_euler, symplectic_euler, heun, rk4, rule38,
+/// implicit_euler_ldlt, implicit_euler_cg, implicit_euler_1newton_ldlt, implicit_euler_1newton_cg).
+std::unique_ptr<cloth::Stepper> make_method(const std::string& name, cloth::ForceField& field);
+const std::vector<std::string>& sweep_methods();
+
+/// Where the program writes: the one machine-readable table (speed_vs_error.dat) and the per-figure files.
+struct Sink {
+  std::string dir;
+  std::FILE* table = nullptr;  ///< speed_vs_error.dat
+};
+
+void near_zero_springs(const cloth::SceneParams& base, double T, double h, const Sink& sink);
+void sensitivity(const cloth::SceneParams& base, const std::vector<Config>& configs, double h, const Sink& sink);
+/// Returns the reference trajectory at the samples; prints and records its credentials.
+Trajectory reference(const cloth::SceneParams& base, const Config& c, int samples, int k_ref, const Sink& sink,
+                     double& agreement);
+void work_precision(const cloth::SceneParams& base, const Config& c, const Trajectory& ref, int samples,
+                    int k_min, int k_max, double max_seconds, int runs, double ref_agreement,
+                    const Sink& sink);
+/// A method stops growing the grid once a step costs more than `max_step_seconds`.
+void scaling(const cloth::SceneParams& base, const std::vector<int>& sizes, int runs, double max_step_seconds,
+             const Sink& sink);
+
+}  // namespace ch06
