@@ -109,7 +109,9 @@ int main(int argc, char** argv) {
       std::fclose(out);
     }
 
-    // The rest mesh, one line segment per spring, for the figure of the three families.
+    // The rest mesh for the figure of the three families: one line segment per spring. Flexion springs would lie
+    // on top of each other ((i,j)-(i+2,j) overlaps (i+1,j)-(i+3,j)), so they are drawn as shallow arcs bulging
+    // to alternate sides; the figure is a picture of the topology, not of positions.
     {
       std::FILE* out = std::fopen((dir + "springs.dat").c_str(), "w");
       for (SpringFamily f : all_spring_families) {
@@ -117,9 +119,21 @@ int main(int argc, char** argv) {
         const SpringRange r = scene.springs().family[static_cast<int>(f)];
         for (int k = r.begin; k < r.end; ++k) {
           const Spring& s = scene.springs().springs[static_cast<std::size_t>(k)];
-          const auto p = scene.rest_positions().segment<3>(3 * s.p);
-          const auto q = scene.rest_positions().segment<3>(3 * s.q);
-          std::fprintf(out, "%g %g\n%g %g\n\n", p[0], p[1], q[0], q[1]);
+          const Eigen::Vector3d p = scene.rest_positions().segment<3>(3 * s.p);
+          const Eigen::Vector3d q = scene.rest_positions().segment<3>(3 * s.q);
+          if (f != SpringFamily::flexion) {
+            std::fprintf(out, "%g %g\n%g %g\n\n", p[0], p[1], q[0], q[1]);
+            continue;
+          }
+          const int particle = scene.particle_of_slot(s.p);
+          const double side = (particle / g.N + particle % g.N) % 2 == 0 ? 1.0 : -1.0;
+          const Eigen::Vector3d normal(-(q - p)[1] / (q - p).norm(), (q - p)[0] / (q - p).norm(), 0.0);
+          for (int t = 0; t <= 16; ++t) {
+            const double a = t / 16.0;
+            const Eigen::Vector3d point = p + a * (q - p) + side * 0.25 * g.d * 4 * a * (1 - a) * normal;
+            std::fprintf(out, "%g %g\n", point[0], point[1]);
+          }
+          std::fprintf(out, "\n");
         }
         std::fprintf(out, "\n");
       }
@@ -133,6 +147,9 @@ int main(int argc, char** argv) {
     Vector x = scene.initial_positions();
     for (Eigen::Index k = 0; k < x.size(); ++k) x[k] += jitter(rng);
     const double worst = gradient_check(field, x);
+    const Energy e = field.energy(x, Vector::Zero(x.size()));
+    std::printf("randomly perturbed sheet (every coordinate moved by up to 0.3 d): spring energy %.3g J, "
+                "gravity energy %.3g J\n", e.spring, e.gravity);
     std::printf("f = -grad E by central differences (eps = 1e-6) on a randomly perturbed sheet: largest relative "
                 "error %.2e\n", worst);
     std::FILE* out = std::fopen((dir + "gradient_check.txt").c_str(), "w");
