@@ -288,8 +288,13 @@ TEST_CASE("the report's damper as printed injects energy; the sign-corrected rep
     return 0.5 * y.segment<6>(6).squaredNorm() + 0.5 * K * (l - d) * (l - d);
   };
   const double initial_energy = 0.5 * (0.5 * 0.5 + 0.1 * 0.1 + 0.5 * 0.5);  // spring at rest length
-  CHECK(final_energy(+1.0) > 1.1 * initial_energy);
-  CHECK(final_energy(-1.0) < 0.9 * initial_energy);
+  const double printed_final = final_energy(+1.0), corrected_final = final_energy(-1.0);
+  CHECK(printed_final > 4 * initial_energy);
+  CHECK(corrected_final < 0.5 * initial_energy);
+  // The values ch01.md quotes (RK4 at this h is converged far below the 1e-3 asked here).
+  CHECK(initial_energy == doctest::Approx(0.255).epsilon(1e-12));
+  CHECK(printed_final == doctest::Approx(1.122).epsilon(1e-3));
+  CHECK(corrected_final == doctest::Approx(0.1155).epsilon(1e-3));
 }
 
 TEST_CASE("coincident particles: a zero-length spring exerts no force and the Jacobians stay finite") {
