@@ -1,5 +1,6 @@
 // Chapter 2: explicit Euler on the report's cloth, symplectic Euler beside it, and the measurement of explicit
 // Euler's energy growth factor (1 + (h omega)^2) per step on an undamped spring.
+#include "chapters/02_explicit_euler/fastest_modes.hpp"
 #include "chapters/02_explicit_euler/single_spring.hpp"
 #include "cloth/command_line.hpp"
 #include "cloth/input_error.hpp"
@@ -16,25 +17,6 @@ namespace {
 
 std::string stepper_name(const std::string& method) {
   return method == "explicit" ? "explicit_euler" : "symplectic_euler";
-}
-
-// The highest angular frequency of the cloth linearised at its rest state, omega_max^2 = largest eigenvalue of
-// -M^{-1} df/dx, by power iteration (at rest every spring is at its rest length, so -df/dx is positive
-// semidefinite). Explicit Euler multiplies that mode's energy by 1 + (h omega_max)^2 per step.
-double fastest_rest_frequency(ForceField& field) {
-  const Scene& scene = field.scene();
-  const Vector x = scene.initial_positions();
-  const Vector v = Vector::Zero(x.size());
-  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
-  field.jacobians(x, v, dfdx, dfdv);
-  Vector q = Vector::Ones(x.size()) + Vector::LinSpaced(x.size(), 0.0, 1.0);  // not orthogonal to the top mode
-  double lambda = 0;
-  for (int k = 0; k < 500; ++k) {
-    const Vector w = -(dfdx * q) / scene.params().mass;
-    lambda = q.dot(w) / q.squaredNorm();
-    q = w.normalized();
-  }
-  return std::sqrt(std::max(lambda, 0.0));
 }
 
 // [single_spring_measurement]
@@ -91,13 +73,21 @@ int run_cloth(const SceneParams& params, RunSettings run, const std::string& met
   prepare_output_dir(dir);
   const double omega_max = fastest_rest_frequency(field);
   const double hw = run.dt * omega_max;
+  const double hc_start = run.dt * fastest_damping_rate(field, scene.initial_positions(), scene.initial_velocities());
   const RunResult result = simulate(*stepper, run);
-  char buf[3][64];
+  const double hc_end = run.dt * fastest_damping_rate(field, result.x, result.v);
+  char buf[5][64];
   std::snprintf(buf[0], sizeof buf[0], "%.6g", omega_max);
   std::snprintf(buf[1], sizeof buf[1], "%.6g", hw);
   std::snprintf(buf[2], sizeof buf[2], "%.10g", 1 + hw * hw);
+  std::snprintf(buf[3], sizeof buf[3], "%.4g", hc_start);
+  std::snprintf(buf[4], sizeof buf[4], "%.4g", hc_end);
   write_outputs(result, *stepper, run,
-                {{"omega_max_at_rest", buf[0]}, {"h_omega_max", buf[1]}, {"explicit_euler_growth_per_step", buf[2]}});
+                {{"omega_max_at_rest", buf[0]},
+                 {"h_omega_max", buf[1]},
+                 {"explicit_euler_growth_per_step", buf[2]},
+                 {"h_c_max_start", buf[3]},
+                 {"h_c_max_end", buf[4]}});
   std::printf("%s: K = %g, D = %g: fastest mode at rest omega_max = %.4g rad/s, h omega_max = %.4g, explicit Euler "
               "multiplies its energy by %.4g per step\n", program.c_str(), params.stiffness, params.damping, omega_max,
               hw, 1 + hw * hw);

@@ -1,5 +1,6 @@
 // Chapter 3: any explicit Runge-Kutta method, given by its Butcher tableau (a built-in name or a file), on the
 // report's cloth; and the observed order of every built-in tableau on the single spring of Chapter 2.
+#include "chapters/02_explicit_euler/fastest_modes.hpp"
 #include "chapters/02_explicit_euler/single_spring.hpp"
 #include "cloth/command_line.hpp"
 #include "cloth/input_error.hpp"
@@ -14,26 +15,6 @@
 using namespace cloth;
 
 namespace {
-
-// [fastest_damping_rate]
-// The fastest damping rate c_max of the cloth at (x, v): the largest eigenvalue of -M^{-1} df/dv, by power
-// iteration (the projected damper gives df/dv = -D sum u u^T over springs, symmetric negative semidefinite).
-// A mode damped at rate c is a real eigenvalue -c of the ODE, and an explicit method is stable on it only while
-// h c stays inside its stability interval on the negative real axis: 2 for euler, 2.785 for rk4.
-double fastest_damping_rate(ForceField& field, const Vector& x, const Vector& v) {
-  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
-  field.jacobians(x, v, dfdx, dfdv);
-  Vector q = Vector::Ones(x.size()) + Vector::LinSpaced(x.size(), 0.0, 1.0);
-  double c = 0;
-  for (int k = 0; k < 1000; ++k) {
-    const Vector w = -(dfdv * q) / field.scene().params().mass;
-    c = q.dot(w) / q.squaredNorm();
-    if (w.norm() == 0) break;  // undamped
-    q = w.normalized();
-  }
-  return c > 0 ? c : 0.0;
-}
-// [fastest_damping_rate]
 
 // One run of the cloth with `tableau`, outputs in `dir`, plus lowest_point.dat (t, lowest z of the cloth) from
 // the recorded frames. Returns report()'s exit status.

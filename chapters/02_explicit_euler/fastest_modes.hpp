@@ -1,0 +1,50 @@
+// The fastest rates of the cloth that limit explicit methods (Chapters 2 and 3): the highest angular frequency
+// of the springs and the fastest damping rate, each the largest eigenvalue of a symmetric matrix found by power
+// iteration on the model's own sparse Jacobians.
+#pragma once
+
+#include "cloth/force_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cloth {
+
+/// Largest eigenvalue of -M^{-1} J for a symmetric negative semidefinite J (50 power iterations are plenty for
+/// the two or three digits printed; 1000 are used because they cost milliseconds).
+inline double largest_rate(const SparseMatrix& J, double mass) {
+  Vector q = Vector::Ones(J.rows()) + Vector::LinSpaced(J.rows(), 0.0, 1.0);  // not orthogonal to the top mode
+  double lambda = 0;
+  for (int k = 0; k < 1000; ++k) {
+    const Vector w = -(J * q) / mass;
+    lambda = q.dot(w) / q.squaredNorm();
+    if (w.norm() == 0) break;  // J = 0: no such term
+    q = w.normalized();
+  }
+  return lambda > 0 ? lambda : 0.0;
+}
+
+/// omega_max of the cloth linearised at its rest state: omega_max^2 = largest eigenvalue of -M^{-1} df/dx there
+/// (every spring at rest length, so -df/dx is positive semidefinite). Explicit Euler multiplies that mode's
+/// energy by 1 + (h omega_max)^2 per step.
+inline double fastest_rest_frequency(ForceField& field) {
+  const Scene& scene = field.scene();
+  const Vector x = scene.initial_positions();
+  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
+  field.jacobians(x, Vector::Zero(x.size()), dfdx, dfdv);
+  return std::sqrt(largest_rate(dfdx, scene.params().mass));
+}
+
+// [fastest_damping_rate]
+/// The fastest damping rate c_max at (x, v): the largest eigenvalue of -M^{-1} df/dv (the projected damper gives
+/// df/dv = -D sum u u^T over springs, symmetric negative semidefinite). A mode damped at rate c is a real
+/// eigenvalue -c of the ODE, and an explicit method is stable on it only while h c stays inside its stability
+/// interval on the negative real axis: 2 for explicit Euler, 2.785 for RK4.
+inline double fastest_damping_rate(ForceField& field, const Vector& x, const Vector& v) {
+  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
+  field.jacobians(x, v, dfdx, dfdv);
+  return largest_rate(dfdv, field.scene().params().mass);
+}
+// [fastest_damping_rate]
+
+}  // namespace cloth
