@@ -53,16 +53,17 @@ void BlockJacobiPCG::precondition(const Vector& r, Vector& z) const {
 }
 
 namespace {
-// y = A x for the full (both triangles) column-major storage: column j scatters x_j.
+// y = A x for the full (both triangles) column-major storage of a symmetric A: column j of A is row j, so y_j is
+// the dot product of column j with x, a gather with no scattered writes.
 void multiply(const SparseMatrix& A, const Vector& x, Vector& y) {
   const int* outer = A.outerIndexPtr();
   const int* rows = A.innerIndexPtr();
   const double* values = A.valuePtr();
-  y.setZero();
-  double* Y = y.data();
+  const double* X = x.data();
   for (Eigen::Index j = 0; j < A.cols(); ++j) {
-    const double xj = x[j];
-    for (int k = outer[j]; k < outer[j + 1]; ++k) Y[rows[k]] += values[k] * xj;
+    double sum = 0;
+    for (int k = outer[j]; k < outer[j + 1]; ++k) sum += values[k] * X[rows[k]];
+    y[j] = sum;
   }
 }
 }  // namespace

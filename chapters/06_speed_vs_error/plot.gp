@@ -1,0 +1,81 @@
+# Chapter 6 figures: work-precision diagrams, sensitivity, near-zero springs, scaling, benchmarks.
+# Called as gnuplot -e "data='DIR'; plots='DIR'" plot.gp
+set terminal pngcairo size 900,620 enhanced font 'Sans,11'
+set grid
+set key outside right top
+methods = "explicit_euler symplectic_euler heun rk4 rule38 implicit_euler_ldlt implicit_euler_cg implicit_euler_1newton_ldlt implicit_euler_1newton_cg"
+titles = methods
+set style line 1 lc rgb '#d62728' pt 5
+set style line 2 lc rgb '#ff7f0e' pt 7
+set style line 3 lc rgb '#bcbd22' pt 9
+set style line 4 lc rgb '#2ca02c' pt 11
+set style line 5 lc rgb '#17becf' pt 13
+set style line 6 lc rgb '#1f77b4' pt 4
+set style line 7 lc rgb '#9467bd' pt 6
+set style line 8 lc rgb '#1f77b4' pt 8 dt 2
+set style line 9 lc rgb '#9467bd' pt 10 dt 2
+
+do for [cfg in "K50_D0 K200_D20 K5000_D20"] {
+  set output plots.'/ch06_wp_'.cfg.'.png'
+  set logscale xy
+  set format x '10^{%L}'
+  set format y '10^{%L}'
+  set xlabel 'wall-clock time of one run to T = 0.25 s [s] (median of 5)'
+  set ylabel 'largest particle position error at T [m]'
+  set title 'Work-precision, 20x20 cloth, '.cfg.', T = 0.25 s, h = T/2**k, all methods' noenhanced
+  plot for [i=1:9] data.'/wp_'.cfg.'.dat' index (i-1) using 4:5 with linespoints ls i lw 1.5 title word(titles, i) noenhanced
+}
+unset format
+
+set output plots.'/ch06_sensitivity.png'
+set logscale y
+unset logscale x
+set format y '10^{%L}'
+set xlabel 't [s]'
+set ylabel 'amplification of a 10^{-12} m perturbation'
+set title 'Sensitivity: two RK4 runs 10^{-12} m apart (20x20, h = 5e-5 full, 5e-4 quick)' enhanced
+plot data.'/sensitivity.dat' index 0 using 4:5 with lines lw 2 title 'K = 50, D = 0', \
+     '' index 1 using 4:5 with lines lw 2 title 'K = 200, D = 20', \
+     '' index 2 using 4:5 with lines lw 2 title 'K = 5000, D = 20', \
+     1 with lines dt 2 lc 'black' notitle
+unset format
+
+set output plots.'/ch06_near_zero.png'
+set logscale y
+set format y '10^{%L}'
+set xlabel 't [s]'
+set ylabel 'shortest spring, l / L_0'
+set title 'Shortest spring over the cloth, K = 50, D = 0, RK4 (20x20)' enhanced
+plot data.'/near_zero.dat' using 1:2 with lines lw 2 title 'min over springs of l/L_0'
+unset format
+
+set output plots.'/ch06_scaling.png'
+set logscale xy
+set format y '10^{%L}'
+set xlabel 'springs'
+set ylabel 'wall-clock time per step [s]'
+set title 'Cost per step vs grid size, K = 50, D = 0 (explicit h = 1e-3, implicit h = 0.01)'
+f1(x) = a1 + b1 * x; f2(x) = a2 + b2 * x; f3(x) = a3 + b3 * x; f4(x) = a4 + b4 * x
+set fit quiet logfile '/dev/null'
+fit f1(x) data.'/scaling.dat' index 0 using (log($3)):(log($4)) via a1, b1
+fit f2(x) data.'/scaling.dat' index 1 using (log($3)):(log($4)) via a2, b2
+fit f3(x) data.'/scaling.dat' index 2 using (log($3)):(log($4)) via a3, b3
+fit f4(x) data.'/scaling.dat' index 3 using (log($3)):(log($4)) via a4, b4
+plot data.'/scaling.dat' index 0 using 3:4 with linespoints ls 1 lw 1.5 title sprintf('explicit_euler, exponent %.2f', b1) noenhanced, \
+     '' index 1 using 3:4 with linespoints ls 4 lw 1.5 title sprintf('rk4, exponent %.2f', b2), \
+     '' index 2 using 3:4 with linespoints ls 6 lw 1.5 title sprintf('implicit ldlt, exponent %.2f', b3), \
+     '' index 3 using 3:4 with linespoints ls 7 lw 1.5 title sprintf('implicit cg, exponent %.2f', b4)
+unset format
+
+set output plots.'/ch06_benchmarks.png'
+unset logscale
+set logscale x
+set format x '10^{%L}'
+set style fill solid 0.6
+set yrange [*:*] reverse
+set ytics nomirror noenhanced
+unset key
+set xlabel 'median time [microseconds], 20x20 cloth, folded state'
+set ylabel ''
+set title 'Micro-benchmarks of the core (wall-clock median)'
+plot data.'/benchmarks.dat' using ($2*0.5):0:($2*0.5):(0.35):yticlabels(stringcolumn(1)) with boxxyerror lc rgb '#1f77b4' notitle
