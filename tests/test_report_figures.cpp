@@ -1,0 +1,73 @@
+// End-to-end checks of Chapter 5's program on a small cloth: bad input is refused, the summary covers the whole
+// method x configuration grid, the strain meshes start unstretched, and the energy verdicts the page quotes
+// (implicit Euler never gains energy; explicit Euler gains far more than RK4) come out of the run.
+#include "program_runner.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+using namespace cloth_test;
+
+#ifdef CLOTH_HAVE_CH05_REPORT_FIGURES
+TEST_CASE("ch05_report_figures --threads 0: status 2, the flag named, nothing written") {
+  ScratchDir scratch;
+  const fs::path cwd = scratch.path() / "cwd";
+  fs::create_directory(cwd);
+  const ProgramRun run = run_chapter("ch05_report_figures", {"--threads", "0", "--out", "out"}, cwd);
+  CHECK(run.status == 2);
+  CHECK(run.err.find("--threads") != std::string::npos);
+  CHECK(entry_count(cwd) == 0);
+}
+
+TEST_CASE("ch05_report_figures on an 8x8 cloth: full grid, unstretched start, energy verdicts") {
+  ScratchDir scratch;
+  const fs::path cwd = scratch.path() / "cwd";
+  fs::create_directory(cwd);
+  const ProgramRun run =
+      run_chapter("ch05_report_figures", {"--grid", "8x8", "--t-end", "0.5", "--no-sweep", "--out", "out"}, cwd);
+  CAPTURE(run.err);
+  REQUIRE(run.status == 0);
+
+  // summary.dat: method K D status t_diverged gain final_change ...; one row per method and configuration.
+  const std::vector<std::string> rows = data_lines(cwd / "out" / "summary.dat");
+  REQUIRE(rows.size() == 12);
+  std::map<std::string, double> gain;
+  for (const std::string& row : rows) {
+    std::istringstream in(row);
+    std::string method, status, t_div;
+    double K = 0, D = 0, g = 0;
+    in >> method >> K >> D >> status >> t_div >> g;
+    gain[method + " " + std::to_string(static_cast<int>(K)) + " " + std::to_string(static_cast<int>(D))] = g;
+  }
+  REQUIRE(gain.size() == 12);
+  // Backward Euler contracts every linear mode (|1/(1 - z)| < 1 for Re z <= 0), so the energy never rises above E(0).
+  CHECK(gain["implicit_euler 50 0"] == 0.0);
+  CHECK(gain["implicit_euler 200 0"] == 0.0);
+  CHECK(gain["implicit_euler 200 20"] == 0.0);
+  // Explicit Euler's energy factor 1 + (h omega)^2 a step against RK4's 1 + O((h omega)^6): orders apart.
+  CHECK(gain["explicit_euler 50 0"] > 100 * gain["rk4 50 0"]);
+  CHECK(gain["explicit_euler 50 0"] > 0.0);
+
+  // The first block of a mesh file is the rest state: every spring at its rest length, strain 0 to print precision.
+  std::ifstream mesh(cwd / "out" / "mesh_rk4_K50_D0.dat");
+  std::string line;
+  int segments = 0;
+  double worst = 0;
+  while (std::getline(mesh, line)) {
+    if (line.rfind("# t = ", 0) == 0 && segments > 0) break;  // the second block starts
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream in(line);
+    double x = 0, y = 0, z = 0, strain = 1;
+    in >> x >> y >> z >> strain;
+    worst = std::max(worst, std::abs(strain));
+    ++segments;
+  }
+  CHECK(segments == 2 * (7 * 8 + 8 * 7));  // two endpoints per structural spring of an 8x8 grid
+  CHECK(worst < 1e-12);
+  CHECK(fs::exists(cwd / "out" / "runs" / "implicit_euler_K50_D0" / "run.txt"));
+}
+#endif
