@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
       ch06::work_precision(opt.scene, c, ref, samples, 4, quick ? 10 : 16, quick ? 0.1 : 4.0, 5, agreement, sink);
     }
     ch06::scaling(opt.scene, quick ? std::vector<int>{20, 40} : std::vector<int>{20, 40, 80, 160, 320},
-                  quick ? 3 : 5, quick ? 0.05 : 2.0, sink);
+                  quick ? 3 : 5, quick ? 1.0 : 2.0, sink);
     std::fclose(sink.table);
     return 0;
   });

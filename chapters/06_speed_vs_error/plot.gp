@@ -53,18 +53,18 @@ set output plots.'/ch06_scaling.png'
 set logscale xy
 set format y '10^{%L}'
 set xlabel 'springs'
-set ylabel 'wall-clock time per step [s]'
+set ylabel 'thread CPU time per step [s] (median)'
 set title 'Cost per step vs grid size, K = 50, D = 0 (explicit h = 1e-3, implicit h = 0.01)'
 f1(x) = a1 + b1 * x; f2(x) = a2 + b2 * x; f3(x) = a3 + b3 * x; f4(x) = a4 + b4 * x
 set fit quiet logfile '/dev/null'
-fit f1(x) data.'/scaling.dat' index 0 using (log($3)):(log($4)) via a1, b1
-fit f2(x) data.'/scaling.dat' index 1 using (log($3)):(log($4)) via a2, b2
-fit f3(x) data.'/scaling.dat' index 2 using (log($3)):(log($4)) via a3, b3
-fit f4(x) data.'/scaling.dat' index 3 using (log($3)):(log($4)) via a4, b4
-plot data.'/scaling.dat' index 0 using 3:4 with linespoints ls 1 lw 1.5 title sprintf('explicit_euler, exponent %.2f', b1) noenhanced, \
-     '' index 1 using 3:4 with linespoints ls 4 lw 1.5 title sprintf('rk4, exponent %.2f', b2), \
-     '' index 2 using 3:4 with linespoints ls 6 lw 1.5 title sprintf('implicit ldlt, exponent %.2f', b3), \
-     '' index 3 using 3:4 with linespoints ls 7 lw 1.5 title sprintf('implicit cg, exponent %.2f', b4)
+fit f1(x) data.'/scaling.dat' index 0 using (log($3)):(log($10)) via a1, b1
+fit f2(x) data.'/scaling.dat' index 1 using (log($3)):(log($10)) via a2, b2
+fit f3(x) data.'/scaling.dat' index 2 using (log($3)):(log($10)) via a3, b3
+fit f4(x) data.'/scaling.dat' index 3 using (log($3)):(log($10)) via a4, b4
+plot data.'/scaling.dat' index 0 using 3:10 with linespoints ls 1 lw 1.5 title sprintf('explicit_euler, exponent %.2f', b1) noenhanced, \
+     '' index 1 using 3:10 with linespoints ls 4 lw 1.5 title sprintf('rk4, exponent %.2f', b2), \
+     '' index 2 using 3:10 with linespoints ls 6 lw 1.5 title sprintf('implicit ldlt, exponent %.2f', b3), \
+     '' index 3 using 3:10 with linespoints ls 7 lw 1.5 title sprintf('implicit cg, exponent %.2f', b4)
 unset format
 
 set output plots.'/ch06_benchmarks.png'
@@ -72,10 +72,11 @@ unset logscale
 set logscale x
 set format x '10^{%L}'
 set style fill solid 0.6
-set yrange [*:*] reverse
+stats data.'/benchmarks.dat' using 2 nooutput
+set yrange [STATS_records - 0.4:-0.6]
 set ytics nomirror noenhanced
 unset key
-set xlabel 'median time [microseconds], 20x20 cloth, folded state'
+set xlabel 'median thread CPU time [microseconds], 20x20 cloth, K = 50, D = 0, folded states'
 set ylabel ''
-set title 'Micro-benchmarks of the core (wall-clock median)'
-plot data.'/benchmarks.dat' using ($2*0.5):0:($2*0.5):(0.35):yticlabels(stringcolumn(1)) with boxxyerror lc rgb '#1f77b4' notitle
+set title 'Micro-benchmarks of the core (median thread CPU time)'
+plot data.'/benchmarks.dat' using ($3*0.5):0:($3*0.5):(0.35):yticlabels(stringcolumn(1)) with boxxyerror lc rgb '#1f77b4' notitle

@@ -264,7 +264,7 @@ void scaling(const SceneParams& base, const std::vector<int>& sizes, int runs, d
              const Sink& sink) {
   std::FILE* f = open(sink, "scaling.dat",
                       "# method grid springs seconds_per_step assembly factorization solve newton_per_step "
-                      "cg_per_solve  (blocks by method)");
+                      "cg_per_solve cpu_seconds_per_step  (blocks by method)");
   const std::vector<std::string> methods = {"explicit_euler", "rk4", "implicit_euler_ldlt", "implicit_euler_cg"};
   for (const std::string& method : methods) {
     std::fprintf(f, "# %s\n", method.c_str());
@@ -305,8 +305,8 @@ void scaling(const SceneParams& base, const std::vector<int>& sizes, int runs, d
                             ? static_cast<double>(stepper->counters().cg_iterations) /
                                   static_cast<double>(stepper->counters().linear_solves)
                             : 0.0;
-      std::fprintf(f, "%s %d %d %.6e %.6e %.6e %.6e %.3f %.2f\n", method.c_str(), size, scene.springs().size(),
-                   per_step, assembly, factorization, solve, newton, cg);
+      std::fprintf(f, "%s %d %d %.6e %.6e %.6e %.6e %.3f %.2f %.6e\n", method.c_str(), size, scene.springs().size(),
+                   per_step, assembly, factorization, solve, newton, cg, t.cpu / steps);
       std::fprintf(sink.table, "scaling %dx%d %s %.6g %d %.6e - - - - - - - ok\n", size, size, method.c_str(), h,
                    scene.springs().size(), per_step);
       std::fflush(f);
