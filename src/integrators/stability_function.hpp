@@ -7,6 +7,7 @@
 
 #include <complex>
 #include <functional>
+#include <vector>
 
 namespace cloth {
 
@@ -16,6 +17,11 @@ using Complex = std::complex<double>;
 /// R(h lambda) (Hairer & Wanner 1996, IV.2). Computed from A and b, never typed in; for an explicit tableau it is
 /// the polynomial sum_k z^k b^T A^{k-1} 1.
 Complex stability_function(const ButcherTableau& tableau, Complex z);
+
+/// The coefficients r_0..r_s of R(z) = sum_k r_k z^k for an explicit (strictly lower triangular) tableau:
+/// r_0 = 1, r_k = b^T A^{k-1} 1, since (I - z A)^{-1} = sum_k z^k A^k when A is nilpotent. For evaluating R at
+/// many points; equal to stability_function() to rounding.
+std::vector<double> stability_polynomial(const ButcherTableau& tableau);
 
 /// Implicit Euler on y' = lambda y: y1 = y0 / (1 - z), so R(z) = 1 / (1 - z); A-stable (|R| <= 1 for Re z <= 0).
 Complex implicit_euler_stability(Complex z);

@@ -1,0 +1,89 @@
+# Chapter 7 figures: stability regions from the tableaus, the cloth's spectrum h*lambda over them, and the
+# measured against the predicted largest stable step h_max. Called as: gnuplot -e "data='DIR'; plots='DIR'" plot.gp
+set terminal pngcairo size 900,800 enhanced font "Sans,12"
+R = data.'/regions.dat'
+
+# Contours |R(z)| = 1 of each method, into datablocks (index: 0 euler .. 5 rule38, 6 implicit, 7 symplectic).
+set contour base
+set cntrparam levels discrete 1.0
+unset surface
+set view map
+set table $Ceuler
+splot R index 0 using 1:2:3 with lines
+set table $Cheun
+splot R index 1 using 1:2:3 with lines
+set table $Ckutta3
+splot R index 3 using 1:2:3 with lines
+set table $Crk4
+splot R index 4 using 1:2:3 with lines
+set table $Cimplicit
+splot R index 6 using 1:2:3 with lines
+set table $Csymplectic
+splot R index 7 using 1:2:3 with lines
+unset table
+unset contour
+set surface
+
+set grid
+set size ratio -1
+set xlabel "Re z = Re(h {/Symbol l})"
+set ylabel "Im z = Im(h {/Symbol l})"
+set key outside bottom center horizontal maxrows 3
+
+set output plots.'/ch07_regions.png'
+set title "Stability regions |R(z)| <= 1, R computed from each Butcher tableau"
+set xrange [-4:1]
+set yrange [-3.5:3.5]
+plot $Ceuler w l lw 2 lc rgb "#d62728" t "explicit Euler (inside)", \
+     $Cheun w l lw 2 lc rgb "#ff7f0e" t "heun = midpoint (inside)", \
+     $Ckutta3 w l lw 2 lc rgb "#9467bd" t "kutta3 (inside)", \
+     $Crk4 w l lw 2 lc rgb "#1f77b4" t "rk4 = rule38 (inside)", \
+     $Cimplicit w l lw 2 dt 2 lc rgb "black" t "implicit Euler (stable OUTSIDE the circle)", \
+     $Csymplectic w l lw 2 lc rgb "#2ca02c" t "symplectic Euler, conjugate-pair modes (inside)"
+
+set output plots.'/ch07_spectrum.png'
+set terminal pngcairo size 1500,620 enhanced font "Sans,12"
+set multiplot layout 1,3 title "Spectrum of the linearised 20 x 20 cloth times h = 0.01 s over the stability regions (projected damper)"
+set key outside bottom center horizontal maxrows 4 font ",10"
+do for [c in "K50_D0 K200_D0 K200_D20"] {
+  if (c eq "K200_D20") { set xrange [-3:0.3]; set yrange [-1.7:1.7] } else { set xrange [-0.4:0.1]; set yrange [-0.6:0.6] }
+  K = (c eq "K50_D0") ? "50" : "200"
+  D = (c eq "K200_D20") ? "20" : "0"
+  set title "K = ".K." N/m, D = ".D." N s/m"
+  plot $Ceuler w l lw 2 lc rgb "#d62728" t "explicit Euler", \
+       $Crk4 w l lw 2 lc rgb "#1f77b4" t "rk4", \
+       $Csymplectic w l lw 2 lc rgb "#2ca02c" t "symplectic Euler", \
+       $Cimplicit w l lw 2 dt 2 lc rgb "black" t "implicit Euler boundary", \
+       data.'/spectrum_rest_'.c.'.dat' u 1:2 w p pt 6 ps 0.8 lc rgb "#555555" t "h{/Symbol l}, rest state", \
+       data.'/spectrum_sagged_'.c.'.dat' u 1:2 w p pt 2 ps 1.0 lc rgb "#e377c2" t "h{/Symbol l}, sagged equilibrium"
+}
+unset multiplot
+
+set output plots.'/ch07_hmax.png'
+set terminal pngcairo size 1500,700 enhanced font "Sans,12"
+set size noratio
+set logscale xy
+set format x "10^{%L}"
+set format y "10^{%L}"
+set xrange [8:1.3e5]
+set yrange [5e-5:0.4]
+set xlabel "spring stiffness K [N/m]"
+set ylabel "largest stable step h_{max} [s]"
+set key outside bottom center horizontal maxrows 3 font ",10"
+P = data.'/predicted_rest.dat'
+S = data.'/predicted.dat'
+M = data.'/measured.dat'
+sel(m, d) = (strcol(3) eq m && $2 == d)
+mid(lo, hi) = (lo > 0 && hi > 0) ? sqrt(lo * hi) : (lo > 0 ? lo : 1/0)
+array meth[4] = ["explicit_euler", "symplectic_euler", "heun", "rk4"]
+array col[4] = ["#d62728", "#2ca02c", "#ff7f0e", "#1f77b4"]
+set multiplot layout 1,2 title "h_{max}: predicted from the spectrum (lines) and measured by bisection on the report scene over 2 s (points; energy above equilibrium may at most double)"
+do for [Dv in "0 20"] {
+  d = real(Dv)
+  set title "D = ".Dv." N s/m, 20 x 20 cloth, four corners pinned, v_0 = -20 m/s"
+  plot for [k=1:4] P u (sel(meth[k], d) ? $1 : 1/0):($4 > 0 ? $4 : 1/0) w l lw 2 lc rgb col[k] t meth[k]." strict, rest", \
+       for [k=1:4] S u (sel(meth[k], d) ? $1 : 1/0):6 w lp dt 2 pt 4 lw 1 lc rgb col[k] t meth[k]." strict, sagged", \
+       for [k=1:1] P u (sel(meth[k], d) ? $1 : 1/0):5 w l dt 3 lw 2 lc rgb col[k] t meth[k]." 2-s energy doubling, rest", \
+       for [k=1:4] M u (sel(meth[k], d) ? $1 : 1/0):(mid($4, $5)):($4 > 0 ? $4 : 1/0):($5 > 0 ? $5 : $4) w yerrorbars pt 7 ps 1.5 lc rgb col[k] t meth[k]." measured"
+}
+unset multiplot
