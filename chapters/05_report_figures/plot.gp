@@ -83,14 +83,14 @@ unset multiplot
 
 unset logscale y
 set format y "%g"
-set key bottom right
+set key bottom left Left reverse samplen 1.5
 set output plots.'/ch05_sag.png'
 set multiplot layout 1, nconfigs title sprintf("Lowest free particle of the cloth, min z, h = %g s (a curve leaving the frame is a run blowing up)", h) font ",13"
 do for [c = 1:nconfigs] {
   set title sprintf("K = %g N/m, D = %g N s/m", cfg_K[c], cfg_D[c])
   set xlabel "t [s]"
   set ylabel "lowest z [m]"
-  set yrange [cfg_sag_low[c]:*]
+  set yrange [1.4 * cfg_sag_low[c]:*]  # room below the curves for the key
   plot for [m = 1:nmethods] series(run_index(m, c)) using 1:4 with lines lw 2 lc rgb method_color(m) title run_method[run_index(m, c)]
 }
 unset multiplot
