@@ -152,7 +152,7 @@ TEST_CASE("a 100 x 100 cloth with implicit Euler at h = 0.01: both linear solver
     auto stepper = make_stepper("implicit_euler", field, newton);
     Vector x = scene.initial_positions(), v = scene.initial_velocities();
     double E = E0;
-    for (int k = 0; k < 2; ++k) {
+    for (int k = 0; k < 1; ++k) {  // one step: a 30000-unknown Newton solve per iteration
       REQUIRE(stepper->step(0.01, x, v));
       const double next = field.energy(x, v).total();
       CHECK(next <= E + 1e-9 * E0);
