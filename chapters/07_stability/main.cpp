@@ -191,8 +191,8 @@ int main(int argc, char** argv) {
       std::FILE* out = std::fopen((dir + "regions.dat").c_str(), "w");
       for (const std::string& method : region_methods) {
         std::fprintf(out, "# %s: Re z, Im z, |R(z)|\n", method.c_str());
-        for (int i = 0; i <= 240; ++i) {
-          const double re = -4.0 + 5.0 * i / 240;
+        for (int i = 0; i <= 260; ++i) {
+          const double re = -4.0 + 6.5 * i / 260;
           for (int j = 0; j <= 240; ++j) {
             const double im = -3.5 + 7.0 * j / 240;
             const Complex z(re, im);

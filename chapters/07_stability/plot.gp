@@ -32,7 +32,7 @@ set key outside bottom center horizontal maxrows 3
 
 set output plots.'/ch07_regions.png'
 set title "Stability regions |R(z)| <= 1, R computed from each Butcher tableau"
-set xrange [-4:1]
+set xrange [-4:2.5]
 set yrange [-3.5:3.5]
 plot $Ceuler w l lw 2 lc rgb "#d62728" t "explicit Euler (inside)", \
      $Cheun w l lw 2 lc rgb "#ff7f0e" t "heun = midpoint (inside)", \
