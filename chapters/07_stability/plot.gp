@@ -50,7 +50,7 @@ do for [c in "K50_D0 K200_D0 K200_D20"] {
   if (c eq "K200_D20") { set xrange [-3:0.3]; set yrange [-1.7:1.7] } else { set xrange [-0.25:0.1]; set yrange [-0.6:0.6] }
   K = (c eq "K50_D0") ? "50" : "200"
   D = (c eq "K200_D20") ? "20" : "0"
-  set title "K = ".K." N/m, D = ".D." N s/m"
+  set title "K = ".K." N/m, D = ".D." N s/m".((c eq "K200_D20") ? " (sagged: dominant eigenvalue only)" : "")
   plot $Ceuler w l lw 2 lc rgb "#d62728" t "explicit Euler", \
        $Crk4 w l lw 2 lc rgb "#1f77b4" t "rk4", \
        $Csymplectic w l lw 2 lc rgb "#2ca02c" t "symplectic Euler", \
