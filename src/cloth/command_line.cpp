@@ -178,20 +178,23 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
     const Flag* chapter = nullptr;
     for (const Flag& f : chapter_flags_)
       if (f.name == flag) chapter = &f;
-    if (chapter && chapter->set_switch) {
+    if (chapter != nullptr && chapter->set_switch) {
       chapter->set_switch();
       continue;
     }
     const SharedFlag* shared = find_shared(flag);
-    if (!chapter && !shared)
+    if (chapter == nullptr && shared == nullptr)
       throw InputError("unknown flag '" + flag + "' (" + program_ + " --help lists the accepted flags)");
-    if (k + 1 >= argc || looks_like_flag(argv[k + 1]))
-      throw InputError(flag + ": missing value: expected " + flag + " " +
-                       (chapter ? chapter->value_name + " (" + chapter->help + ")"
-                                : std::string(shared->value_name) + " (" + shared->accepted + ")"));
+    if (k + 1 >= argc || looks_like_flag(argv[k + 1])) {
+      std::string message = flag;
+      message.append(": missing value: expected ").append(flag).append(" ");
+      message.append(chapter != nullptr ? chapter->value_name : shared->value_name).append(" (");
+      message.append(chapter != nullptr ? chapter->help : shared->accepted).append(")");
+      throw InputError(message);
+    }
     const std::string value = argv[++k];
     try {
-      if (chapter) chapter->set_value(value);
+      if (chapter != nullptr) chapter->set_value(value);
       else if (flag == "--grid") grid_text = value;
       else if (flag == "--spacing") opt.scene.grid.d = positive(value);
       else if (flag == "--K") opt.scene.stiffness = positive(value);

@@ -3,6 +3,7 @@
 
 #include "cloth/input_error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -97,9 +98,8 @@ Scene::Scene(const SceneParams& params) : params_(params) {
 }
 
 bool Scene::has_damping() const {
-  for (SpringFamily f : all_spring_families)
-    if (damping(f) != 0.0 && springs_.count(f) > 0) return true;
-  return false;
+  return std::ranges::any_of(all_spring_families,
+                             [this](SpringFamily f) { return damping(f) != 0.0 && springs_.count(f) > 0; });
 }
 
 Eigen::VectorXd Scene::initial_positions() const { return rest_positions_.head(dof_count()); }
