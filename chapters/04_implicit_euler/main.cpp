@@ -40,12 +40,12 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
   const Scene scene(params);
   validate(newton, scene);  // before anything is written
   ForceField field(scene);
-  ImplicitEuler stepper(field, newton);
+  ImplicitEuler stepper(field, newton);  // resolves the automatic solver choice
   run.out_dir = dir;
   prepare_output_dir(dir);
   RunResult result = simulate(stepper, run);
   write_outputs(result, stepper, run,
-                {{"linear_solver", linear_solver_name(newton.solver)},
+                {{"linear_solver", linear_solver_name(stepper.settings().solver)},
                  {"jacobian", treatment_name(newton.treatment)},
                  {"newton_tol", num(newton.tolerance)},
                  {"newton_max_iter", std::to_string(newton.max_iterations)}});
@@ -170,7 +170,9 @@ int main(int argc, char** argv) {
   CommandLine cli("ch04_implicit_euler",
                   "Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the\n"
                   "analytic sparse Jacobian J = M - h df/dv - h^2 df/dx.");
-  cli.add_value("--linear-solver", "ldlt|cg|lu", "sparse LDL^T (default), Jacobi-preconditioned CG, or sparse LU",
+  cli.add_value("--linear-solver", "ldlt|cg|lu",
+                "sparse LDL^T, block-Jacobi-preconditioned CG, or sparse LU (default: lu for the exact Jacobian of "
+                "a damped cloth, ldlt otherwise)",
                 [&](const std::string& s) {
                   if (s == "ldlt") newton.solver = LinearSolverKind::ldlt;
                   else if (s == "cg") newton.solver = LinearSolverKind::cg;
@@ -191,7 +193,7 @@ int main(int argc, char** argv) {
                   newton.max_iterations = static_cast<int>(n);
                 });
   cli.add_value("--jacobian", "exact|symmetric|definite",
-                "the Newton matrix's df/dx: exact, symmetric (default; drops the damper's d/dx) or definite "
+                "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
                 "(Choi & Ko 2002; the default with cg)",
                 [&](const std::string& s) {
                   if (s == "exact") jacobian = StiffnessTreatment::exact;
@@ -206,11 +208,14 @@ int main(int argc, char** argv) {
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     // [jacobian_default]
-    // CG needs a symmetric positive definite matrix, so it gets the definite one unless --jacobian says
-    // otherwise; an explicit incompatible choice is refused by validate(NewtonSettings) with exit status 2.
-    newton.treatment = jacobian ? *jacobian
-                                : newton.solver == LinearSolverKind::cg ? StiffnessTreatment::definite
-                                                                        : StiffnessTreatment::symmetric;
+    // Without --jacobian, the most exact matrix the chosen solver can take: CG needs a symmetric positive
+    // definite matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry), LU takes the exact one.
+    // An explicit incompatible choice is refused by validate(NewtonSettings) with exit status 2.
+    const bool damped = Scene(opt.scene).has_damping();
+    if (jacobian) newton.treatment = *jacobian;
+    else if (newton.solver == LinearSolverKind::cg) newton.treatment = StiffnessTreatment::definite;
+    else if (newton.solver == LinearSolverKind::ldlt && damped) newton.treatment = StiffnessTreatment::symmetric;
+    else newton.treatment = StiffnessTreatment::exact;
     // [jacobian_default]
     if (want_report_runs) {
       validate(newton, Scene(opt.scene));

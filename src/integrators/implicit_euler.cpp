@@ -14,11 +14,20 @@ const char* linear_solver_name(LinearSolverKind kind) {
     case LinearSolverKind::ldlt: return "ldlt";
     case LinearSolverKind::cg: return "cg";
     case LinearSolverKind::lu: return "lu";
+    case LinearSolverKind::automatic: return "automatic";
   }
   return "?";
 }
 
-void validate(const NewtonSettings& s, const Scene& scene) {
+NewtonSettings resolve(NewtonSettings settings, const Scene& scene) {
+  if (settings.solver == LinearSolverKind::automatic)
+    settings.solver = settings.treatment == StiffnessTreatment::exact && scene.has_damping() ? LinearSolverKind::lu
+                                                                                              : LinearSolverKind::ldlt;
+  return settings;
+}
+
+void validate(const NewtonSettings& settings, const Scene& scene) {
+  const NewtonSettings s = resolve(settings, scene);
   if (!(s.tolerance > 0) || !std::isfinite(s.tolerance))
     throw InputError("--newton-tol: expected a number > 0");
   if (s.max_iterations < 1) throw InputError("--newton-max-iter: expected a whole number >= 1");
@@ -36,7 +45,7 @@ std::string ImplicitEuler::name() const {
 }
 
 ImplicitEuler::ImplicitEuler(ForceField& field, NewtonSettings settings)
-    : Stepper(field), settings_(settings), A_(field.pattern()), cg_(field.dof_count()) {
+    : Stepper(field), settings_(resolve(settings, field.scene())), A_(field.pattern()), cg_(field.dof_count()) {
   validate(settings_, field.scene());
   const int n = field.dof_count();
   v1_.resize(n), x1_.resize(n), f_.resize(n), r_.resize(n), dv_.resize(n);
@@ -73,7 +82,8 @@ bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
       t0 = clock::now();
       dv = lu_.solve(rhs);
       break;
-    case LinearSolverKind::cg:
+    case LinearSolverKind::automatic: return false;  // never reached: resolve() ran in the constructor
+    case LinearSolverKind::cg: {
       // The block-Jacobi preconditioner: each particle's 3x3 diagonal block inverted, O(n).
       if (!cg_.compute(A_)) return false;
       timing_.factorization += seconds_since(t0);
@@ -85,10 +95,21 @@ bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
       counters_.cg_iterations += cg_.iterations();
       if (!converged) return false;
       break;
+    }
   }
   ++counters_.linear_solves;
   timing_.solve += seconds_since(t0);
   return dv.allFinite();
+}
+
+double ImplicitEuler::residual_at(const Vector& x, const Vector& v, double h) {
+  // r(v1) = M (v1 - v0) - h f(x0 + h v1, v1); r_ holds -r, the right-hand side of the Newton update.
+  const double m = field_.scene().params().mass;
+  x1_ = x + h * v1_;
+  field_.forces(x1_, v1_, f_);
+  ++counters_.rhs_evaluations;
+  r_ = h * f_ - m * (v1_ - v);
+  return r_.lpNorm<Eigen::Infinity>();
 }
 
 bool ImplicitEuler::step(double h, Vector& x, Vector& v) {
@@ -98,15 +119,10 @@ bool ImplicitEuler::step(double h, Vector& x, Vector& v) {
   residuals_.clear();
   // [newton_loop]
   v1_ = v;  // the guess v1 = v0
+  double residual = residual_at(x, v, h);
+  residuals_.push_back(residual);
   double update = INFINITY;
   for (int k = 0;; ++k) {
-    // Residual r(v1) = M (v1 - v0) - h f(x0 + h v1, v1); r_ holds -r, the right-hand side of the update.
-    x1_ = x + h * v1_;
-    field_.forces(x1_, v1_, f_);
-    ++counters_.rhs_evaluations;
-    r_ = h * f_ - m * (v1_ - v);
-    const double residual = r_.lpNorm<Eigen::Infinity>();
-    residuals_.push_back(residual);
     const double scale = 1.0 + v1_.lpNorm<Eigen::Infinity>();
     if (!std::isfinite(residual)) break;
     if (residual <= tol * m * scale && (k == 0 || update <= tol * scale)) {
@@ -131,16 +147,31 @@ bool ImplicitEuler::step(double h, Vector& x, Vector& v) {
       return false;
     }
     if (k == 0) warm_dv_ = dv_;
-    v1_ += dv_;
-    update = dv_.lpNorm<Eigen::Infinity>();
     if (settings_.max_iterations == 1) {
       // Baraff & Witkin's linearly implicit step: one Newton iteration, accepted by design, unchecked.
+      v1_ += dv_;
       x = x + h * v1_;
       v = v1_;
       counters_.newton_iterations += 1;
       ++counters_.steps;
       return true;
     }
+    // Backtracking line search (Dennis & Schnabel 1996, 6.3): far from the solution, or when the matrix is
+    // only an approximation of J (the symmetric and definite treatments), the full update can make the
+    // residual grow; halving it until the residual decreases keeps Newton from wandering off. Close to the
+    // solution the full step always decreases it, so quadratic convergence is untouched.
+    double step_fraction = 1.0;
+    v1_ += dv_;
+    double trial = residual_at(x, v, h);
+    while (!(trial < residual) && step_fraction > 1.0 / 64) {
+      step_fraction *= 0.5;
+      v1_ -= step_fraction * dv_;  // back from v1 + 2a dv to v1 + a dv
+      trial = residual_at(x, v, h);
+      ++counters_.line_search_halvings;
+    }
+    residual = trial;
+    residuals_.push_back(residual);
+    update = step_fraction * dv_.lpNorm<Eigen::Infinity>();
   }
   // [newton_loop]
   char buf[200];

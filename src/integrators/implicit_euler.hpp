@@ -17,7 +17,8 @@ namespace cloth {
 enum class LinearSolverKind {
   ldlt,  ///< sparse LDL^T, fill-reducing ordering analysed once per scene, numeric factorization per iteration
   cg,    ///< conjugate gradients with a block-Jacobi (3x3) preconditioner, warm-started; needs the definite matrix
-  lu     ///< sparse LU: the only choice for the exact, non-symmetric Jacobian of a damped cloth
+  lu,    ///< sparse LU: the only choice for the exact, non-symmetric Jacobian of a damped cloth
+  automatic  ///< chosen for the matrix: lu for the exact Jacobian of a damped cloth, ldlt otherwise
 };
 const char* linear_solver_name(LinearSolverKind kind);
 
@@ -29,12 +30,17 @@ struct NewtonSettings {
   /// Iterations before the step is declared failed. 1 is Baraff & Witkin's linearly implicit step: one
   /// iteration from v1 = v0, accepted as it is, by design.
   int max_iterations = 20;
-  LinearSolverKind solver = LinearSolverKind::ldlt;
-  /// symmetric (the default) suits ldlt and lu; exact needs lu when the cloth is damped; cg needs definite.
-  StiffnessTreatment treatment = StiffnessTreatment::symmetric;
+  LinearSolverKind solver = LinearSolverKind::automatic;
+  /// exact (the default) makes Newton converge quadratically, damped or not; symmetric suits ldlt and lu;
+  /// cg needs definite.
+  StiffnessTreatment treatment = StiffnessTreatment::exact;
   double cg_tolerance = 1e-10;  ///< relative residual of each CG solve
   int cg_max_iterations = 2000;
 };
+
+/// The settings with `automatic` replaced by the solver the matrix calls for: the exact Jacobian of a damped
+/// cloth is not symmetric, so it gets lu; every other treatment gives a symmetric matrix, which gets ldlt.
+NewtonSettings resolve(NewtonSettings settings, const Scene& scene);
 
 /// Throws InputError when the solver cannot take the matrix the treatment gives (CG needs the definite one,
 /// LDL^T a symmetric one).
@@ -58,6 +64,8 @@ class ImplicitEuler final : public Stepper {
 
  private:
   bool solve(const Vector& rhs, Vector& dv, bool warm_start);
+  // Sets x1_ = x0 + h v1_, f_ and r_ = -r(v1_), and returns |r|_inf.
+  double residual_at(const Vector& x, const Vector& v, double h);
 
   NewtonSettings settings_;
   SparseMatrix A_;

@@ -17,6 +17,7 @@ struct StepCounters {
   long long linear_solves = 0;
   long long cg_iterations = 0;        ///< conjugate-gradient iterations, summed over solves
   long long newton_iterations = 0;    ///< summed over steps
+  long long line_search_halvings = 0; ///< Newton updates halved because the full one raised the residual
 };
 
 /// Why a step could not be taken (a Newton iteration that did not converge, a failed factorization).
