@@ -104,10 +104,13 @@ void validate(const ButcherTableau& t) {
   if (t.order < 1 || t.order > 4)
     throw InputError(who + "claims order " + std::to_string(t.order) + ": expected an order from 1 to 4 (the "
                      "conditions this program checks)");
-  static const char* const conditions[] = {"", "sum b_i = 1", "sum b_i c_i = 1/2",
-                                           "sum b_i c_i^2 = 1/3 and sum b_i a_ij c_j = 1/6",
-                                           "sum b_i c_i^3 = 1/4, sum b_i c_i a_ij c_j = 1/8, sum b_i a_ij c_j^2 = "
-                                           "1/12 and sum b_i a_ij a_jk c_k = 1/24"};
+  // The order conditions, by order, as the error message states them.
+  static const char* const conditions[] = {
+      "",
+      "sum b_i = 1",
+      "sum b_i c_i = 1/2",
+      "sum b_i c_i^2 = 1/3 and sum b_i a_ij c_j = 1/6",
+      "sum b_i c_i^3 = 1/4, sum b_i c_i a_ij c_j = 1/8, sum b_i a_ij c_j^2 = 1/12, sum b_i a_ij a_jk c_k = 1/24"};
   for (int p = 1; p <= t.order; ++p) {
     const double defect = order_condition_defect(t, p);
     if (defect > tolerance)
