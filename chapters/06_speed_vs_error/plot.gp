@@ -22,7 +22,9 @@ do for [cfg in "K50_D0 K200_D20 K5000_D20"] {
   set format y '10^{%L}'
   set xlabel 'wall-clock time of one run to T = 0.25 s [s] (median of 5)'
   set ylabel 'largest particle position error at T [m]'
-  set title 'Work-precision, 20x20 cloth, '.cfg.', T = 0.25 s, h = T/2**k, all methods' noenhanced
+  K = substr(cfg, 2, strstrt(cfg, '_') - 1)
+  D = substr(cfg, strstrt(cfg, '_D') + 2, strlen(cfg))
+  set title 'Work-precision, 20 x 20 cloth, K = '.K.' N/m, D = '.D.' N s/m, T = 0.25 s, h = T / 2^k' noenhanced
   plot for [i=1:9] data.'/wp_'.cfg.'.dat' index (i-1) using 4:5 with linespoints ls i lw 1.5 title word(titles, i) noenhanced
 }
 unset format
