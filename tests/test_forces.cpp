@@ -10,28 +10,15 @@
 #include <limits>
 #include <random>
 
+#include "random_state.hpp"
+
 using namespace cloth;
 
 namespace {
 
-constexpr double unit_roundoff = std::numeric_limits<double>::epsilon() / 2;
-
-// A random state of the scene's free particles: the rest grid scaled in-plane by `scale` about the origin
-// (scale < 1 compresses, > 1 stretches), every coordinate moved by up to `jitter` d, velocities uniform in
-// [-speed, speed]. Pinned particles stay at rest, as they always do.
-struct State {
-  Vector x, v;
-};
-State random_state(const Scene& scene, std::mt19937& rng, double scale, double jitter, double speed) {
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  State s{scene.initial_positions(), Vector(scene.dof_count())};
-  for (Eigen::Index k = 0; k < s.x.size(); ++k) {
-    if (k % 3 != 2) s.x[k] *= scale;
-    s.x[k] += jitter * scene.grid().d * unit(rng);
-    s.v[k] = speed * unit(rng);
-  }
-  return s;
-}
+using testing::random_state;
+using testing::State;
+using testing::unit_roundoff;
 
 // Positions and velocities of every slot (free then pinned), so that springs can be evaluated by hand.
 Vector all_slot_positions(const Scene& scene, const Vector& x) {

@@ -10,28 +10,15 @@
 #include <limits>
 #include <random>
 
+#include "random_state.hpp"
+
 using namespace cloth;
 
 namespace {
 
-constexpr double unit_roundoff = std::numeric_limits<double>::epsilon() / 2;
-
-struct State {
-  Vector x, v;
-};
-
-// The rest grid scaled in-plane by `scale` about the origin, every coordinate moved by up to `jitter` d, and
-// velocities uniform in [-speed, speed]; pinned particles stay at rest.
-State random_state(const Scene& scene, std::mt19937& rng, double scale, double jitter, double speed) {
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  State s{scene.initial_positions(), Vector(scene.dof_count())};
-  for (Eigen::Index k = 0; k < s.x.size(); ++k) {
-    if (k % 3 != 2) s.x[k] *= scale;
-    s.x[k] += jitter * scene.grid().d * unit(rng);
-    s.v[k] = speed * unit(rng);
-  }
-  return s;
-}
+using testing::random_state;
+using testing::State;
+using testing::unit_roundoff;
 
 SceneParams scene_params(PinSet pins, double K, double D, DampingModel model) {
   SceneParams p;
