@@ -92,6 +92,8 @@ ForceField::ForceField(const Scene& scene)
     spring_blocks_.push_back({{block(s.p, s.p), block(s.q, s.q), block(s.p, s.q), block(s.q, s.p)}});
   diagonal_entry_.resize(static_cast<std::size_t>(3 * n_free));
   for (int k = 0; k < 3 * n_free; ++k) diagonal_entry_[static_cast<std::size_t>(k)] = entry(k, k);
+  diagonal_blocks_.reserve(static_cast<std::size_t>(n_free));
+  for (int s = 0; s < n_free; ++s) diagonal_blocks_.push_back(block(s, s));
 }
 
 void ForceField::scatter_state(const ConstVectorRef& x, const ConstVectorRef& v) {
@@ -234,8 +236,10 @@ void ForceField::jacobians(const ConstVectorRef& x, const ConstVectorRef& v, Spa
 
 namespace {
 
-// values[block] += sign (alpha u u^T + beta I): the one block shape of the lean refill (symmetric, 6 numbers).
-inline void add_rank_one_plus_identity(double* values, const std::array<int, 3>& start, double alpha, double beta,
+// values[block] += sign (alpha u u^T + beta I), or = when `assign`: the one block shape of the lean refill
+// (symmetric, 6 numbers).
+template <bool assign>
+inline void put_rank_one_plus_identity(double* values, const std::array<int, 3>& start, double alpha, double beta,
                                        const double* u, double sign) {
   if (start[0] < 0) return;
   const double a = sign * alpha, b = sign * beta;
@@ -244,9 +248,15 @@ inline void add_rank_one_plus_identity(double* values, const std::array<int, 3>&
   double* c0 = values + start[0];
   double* c1 = values + start[1];
   double* c2 = values + start[2];
-  c0[0] += u00 + b, c0[1] += u01, c0[2] += u02;
-  c1[0] += u01, c1[1] += u11 + b, c1[2] += u12;
-  c2[0] += u02, c2[1] += u12, c2[2] += u22 + b;
+  if constexpr (assign) {
+    c0[0] = u00 + b, c0[1] = u01, c0[2] = u02;
+    c1[0] = u01, c1[1] = u11 + b, c1[2] = u12;
+    c2[0] = u02, c2[1] = u12, c2[2] = u22 + b;
+  } else {
+    c0[0] += u00 + b, c0[1] += u01, c0[2] += u02;
+    c1[0] += u01, c1[1] += u11 + b, c1[2] += u12;
+    c2[0] += u02, c2[1] += u12, c2[2] += u22 + b;
+  }
 }
 
 }  // namespace
@@ -268,17 +278,20 @@ void ForceField::refill_symmetric(double h, bool definite, double* values) {
       const int p = 3 * s.p, q = 3 * s.q;
       const double d[3] = {X[p] - X[q], X[p + 1] - X[q + 1], X[p + 2] - X[q + 2]};
       const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      if (l <= degenerate_length_fraction * s.rest_length) continue;
-      const double inv_l = 1.0 / l;
+      // A degenerate spring contributes nothing, but still writes its (zero) off-diagonal blocks.
+      const bool degenerate = l <= degenerate_length_fraction * s.rest_length;
+      const double inv_l = degenerate ? 0.0 : 1.0 / l;
       const double u[3] = {d[0] * inv_l, d[1] * inv_l, d[2] * inv_l};
       double t = 1.0 - s.rest_length * inv_l;
       if (definite) t = std::max(t, 0.0);
-      const double alpha = h2K * (1.0 - t) + hD, beta = h2K * t;
+      const double alpha = degenerate ? 0.0 : h2K * (1.0 - t) + hD, beta = degenerate ? 0.0 : h2K * t;
       const auto& c = spring_blocks_[static_cast<std::size_t>(k)].column_start;
-      add_rank_one_plus_identity(values, c[0], alpha, beta, u, 1.0);
-      add_rank_one_plus_identity(values, c[1], alpha, beta, u, 1.0);
-      add_rank_one_plus_identity(values, c[2], alpha, beta, u, -1.0);
-      add_rank_one_plus_identity(values, c[3], alpha, beta, u, -1.0);
+      // Diagonal blocks collect every spring of their particle; an off-diagonal block belongs to one spring
+      // alone, so it is assigned, and only the diagonal blocks had to be cleared.
+      put_rank_one_plus_identity<false>(values, c[0], alpha, beta, u, 1.0);
+      put_rank_one_plus_identity<false>(values, c[1], alpha, beta, u, 1.0);
+      put_rank_one_plus_identity<true>(values, c[2], alpha, beta, u, -1.0);
+      put_rank_one_plus_identity<true>(values, c[3], alpha, beta, u, -1.0);
     }
   }
 }
@@ -288,16 +301,20 @@ void ForceField::newton_matrix(const ConstVectorRef& x, const ConstVectorRef& v,
                                StiffnessTreatment treatment, SparseMatrix& A) {
   scatter_state(x, v);
   double* values = A.valuePtr();
-  std::fill_n(values, A.nonZeros(), 0.0);
   const double m = scene_.params().mass;
-  for (int k : diagonal_entry_) values[k] = m;
   // Without damping, exact and symmetric are the same matrix; projected damping is symmetric once its d/dx goes.
   const bool lean = !scene_.has_damping() ||
                     (scene_.params().damping_model == DampingModel::projected && treatment != StiffnessTreatment::exact);
   if (lean) {
+    // Every off-diagonal block is assigned by its spring, so only the diagonal blocks are cleared.
+    for (const auto& start : diagonal_blocks_)
+      for (int b : start) std::fill_n(values + b, 3, 0.0);
+    for (int k : diagonal_entry_) values[k] = m;
     refill_symmetric(h, treatment == StiffnessTreatment::definite, values);
     return;
   }
+  std::fill_n(values, A.nonZeros(), 0.0);
+  for (int k : diagonal_entry_) values[k] = m;
   for_each_spring_block(treatment, [&](const SpringBlocks& blocks, const Eigen::Matrix3d& Bx, const Eigen::Matrix3d& Bv) {
     // A = M - h df/dv - h^2 df/dx, block by block.
     const Eigen::Matrix3d C = -h * Bv - (h * h) * Bx;

@@ -86,6 +86,7 @@ class ForceField {
   SparseMatrix pattern_;
   std::vector<SpringBlocks> spring_blocks_;
   std::vector<int> diagonal_entry_;  // value index of entry (k, k), for the mass term
+  std::vector<std::array<int, 3>> diagonal_blocks_;  // column starts of each free particle's diagonal block
 };
 
 }  // namespace cloth
