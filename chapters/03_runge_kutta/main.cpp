@@ -1,6 +1,6 @@
 // Chapter 3: any explicit Runge-Kutta method, given by its Butcher tableau (a built-in name or a file), on the
 // report's cloth; and the observed order of every built-in tableau on the single spring of Chapter 2.
-#include "chapters/02_explicit_euler/fastest_modes.hpp"
+#include "cloth/fastest_modes.hpp"
 #include "chapters/02_explicit_euler/single_spring.hpp"
 #include "cloth/command_line.hpp"
 #include "cloth/input_error.hpp"

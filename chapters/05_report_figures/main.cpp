@@ -2,6 +2,7 @@
 // the report scene at (K, D) = (50, 0), (200, 0), (200, 20), then sweeps K x D per method, and writes the data
 // of the chapter's figures (strain-coloured meshes, energy, sag, animations, heat maps) and their summary tables.
 #include "cloth/command_line.hpp"
+#include "cloth/fastest_modes.hpp"
 #include "cloth/input_error.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/simulate.hpp"
@@ -114,18 +115,6 @@ std::string outcome(const RunResult& r, double h) {
 double divergence_time(const RunResult& r, double h) { return diverged(r) ? r.t + h : std::nan(""); }
 
 // [stiffness_eigenvalue]
-// Largest eigenvalue of a symmetric positive semi-definite matrix S, by power iteration.
-double largest_eigenvalue(const SparseMatrix& S) {
-  Vector y = Vector::LinSpaced(S.rows(), 1.0, 2.0);
-  double lambda = 0;
-  for (int it = 0; it < 5000; ++it) {
-    const Vector z = S * y;
-    lambda = y.dot(z) / y.dot(y);
-    y = z / z.norm();
-  }
-  return lambda;
-}
-
 // Largest eigenvalue lambda of -df/dx / (m K) at the rest state. At rest no spring is under tension, so
 // -df/dx = K sum u u^T (one 3x3 block per spring) and the highest mode's frequency is omega_max = sqrt(lambda K / m).
 // The projected dampers have -df/dv = D sum u u^T, the same matrix with D for K, so the fastest damped mode decays
@@ -139,7 +128,7 @@ double rest_stiffness_eigenvalue(const SceneParams& base) {
   SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
   const Vector x = scene.initial_positions();
   field.jacobians(x, Vector::Zero(x.size()), dfdx, dfdv);
-  return largest_eigenvalue(-dfdx / p.mass);
+  return largest_rate(dfdx, p.mass);  // cloth/fastest_modes.hpp: power iteration on -M^{-1} df/dx
 }
 
 // The same damping eigenvalue, lambda_D = largest eigenvalue of sum u u^T / m, on a deformed cloth (every particle's
@@ -154,7 +143,7 @@ double damping_eigenvalue(const SceneParams& base, const Vector& positions) {
   for (int s = 0; s < scene.free_count(); ++s) x.segment<3>(3 * s) = positions.segment<3>(3 * scene.particle_of_slot(s));
   SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
   field.jacobians(x, Vector::Zero(x.size()), dfdx, dfdv);
-  return largest_eigenvalue(-dfdv / p.mass);
+  return largest_rate(dfdv, p.mass);
 }
 // [stiffness_eigenvalue]
 
