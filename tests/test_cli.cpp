@@ -252,7 +252,7 @@ TEST_CASE("ch04_implicit_euler: bad input gives status 2, one line naming the fl
 TEST_CASE("ch04_implicit_euler: bad Newton and linear-solver settings are refused") {
   expect_refused("ch04_implicit_euler",
                  {
-                     {{"--linear-solver", "qr"}, {"--linear-solver", "'qr'", "ldlt", "cg", "lu"}},
+                     {{"--linear-solver", "qr"}, {"--linear-solver", "'qr'", "ldlt", "ldu", "cg", "lu"}},
                      {{"--linear-solver"}, {"--linear-solver: missing value"}},
                      {{"--newton-tol", "0"}, {"--newton-tol", "expected a number"}},
                      {{"--newton-tol", "nan"}, {"--newton-tol", "finite"}},

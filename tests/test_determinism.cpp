@@ -110,7 +110,7 @@ TEST_CASE("ch03_runge_kutta run twice writes byte-identical final.dat, for every
 
 #ifdef CLOTH_HAVE_CH04_IMPLICIT_EULER
 TEST_CASE("ch04_implicit_euler run twice writes byte-identical final.dat, for every linear solver") {
-  for (const char* solver : {"ldlt", "cg", "lu"})
+  for (const char* solver : {"ldlt", "ldu", "cg", "lu"})
     check_program_repeats("ch04_implicit_euler", {"--linear-solver", solver, "--grid", "10x10", "--damping", "1",
                                                   "--K", "200", "--t-end", "0.5"});
   check_program_repeats("ch04_implicit_euler", {"--newton-max-iter", "1", "--grid", "10x10", "--t-end", "0.5"});

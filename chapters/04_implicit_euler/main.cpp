@@ -170,14 +170,15 @@ int main(int argc, char** argv) {
   CommandLine cli("ch04_implicit_euler",
                   "Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the\n"
                   "analytic sparse Jacobian J = M - h df/dv - h^2 df/dx.");
-  cli.add_value("--linear-solver", "ldlt|cg|lu",
-                "sparse LDL^T, block-Jacobi-preconditioned CG, or sparse LU (default: lu for the exact Jacobian of "
-                "a damped cloth, ldlt otherwise)",
+  cli.add_value("--linear-solver", "ldlt|ldu|cg|lu",
+                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, or Eigen's pivoting sparse LU (default: ldu "
+                "for the exact Jacobian of a damped cloth, ldlt otherwise)",
                 [&](const std::string& s) {
                   if (s == "ldlt") newton.solver = LinearSolverKind::ldlt;
+                  else if (s == "ldu") newton.solver = LinearSolverKind::ldu;
                   else if (s == "cg") newton.solver = LinearSolverKind::cg;
                   else if (s == "lu") newton.solver = LinearSolverKind::lu;
-                  else throw InputError("unknown solver '" + s + "': expected ldlt, cg or lu");
+                  else throw InputError("unknown solver '" + s + "': expected ldlt, ldu, cg or lu");
                 });
   cli.add_value("--newton-tol", "TOL", "Newton's stopping tolerance on |dv| and |r| (default 1e-8)",
                 [&](const std::string& s) {
@@ -209,7 +210,7 @@ int main(int argc, char** argv) {
     const Options opt = cli.parse(argc, argv);
     // [jacobian_default]
     // Without --jacobian, the most exact matrix the chosen solver can take: CG needs a symmetric positive
-    // definite matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry), LU takes the exact one.
+    // definite matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry), LDU and LU take the exact one.
     // An explicit incompatible choice is refused by validate(NewtonSettings) with exit status 2.
     const bool damped = Scene(opt.scene).has_damping();
     if (jacobian) newton.treatment = *jacobian;

@@ -11,6 +11,7 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
 #ifdef CLOTH_HAVE_CHOLMOD
 #include <Eigen/CholmodSupport>
 #endif
@@ -77,7 +78,21 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
                      median_seconds([&] { field.newton_matrix(x, v, h, StiffnessTreatment::definite, A); }, runs, 5, 20),
                      nnz, "nonzeros"));
 
-  // Numeric factorizations of the definite matrix (positive definite, so LL^T works as well as LDL^T).
+  // Numeric factorizations of the definite matrix (positive definite, so LL^T works as well as LDL^T). First the
+  // core's block factorization (integrators/block_ldu.hpp), symmetric and general, then what Eigen and CHOLMOD
+  // offer on the same matrix.
+  for (const auto symmetry : {BlockLDU::Symmetry::symmetric, BlockLDU::Symmetry::general}) {
+    BlockLDU block;
+    block.analyze(A, symmetry);
+    const Seconds t = median_seconds([&] { block.factorize(A); }, runs, 2, 5);
+    const bool symmetric = symmetry == BlockLDU::Symmetry::symmetric;
+    out.push_back(make(symmetric ? "factorize_block_ldlt_amd" : "factorize_block_ldu_amd", t,
+                       block.factorization_flops(), "multiply_adds"));
+  }
+  {
+    Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> s;
+    out.push_back(factorization("factorize_eigen_sparselu_colamd", s, A, runs));
+  }
   {
     Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> s;
     out.push_back(factorization("factorize_eigen_ldlt_amd", s, A, runs));
@@ -162,9 +177,10 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
 
   // One Newton iteration of implicit Euler (force evaluation, refill, factorization or preconditioner, solve),
   // stepping through consecutive states so that CG's warm start is the one a run would see.
-  const auto newton_iteration = [&](LinearSolverKind kind, const char* name) {
+  const auto newton_iteration = [&](LinearSolverKind kind, const char* name,
+                                    StiffnessTreatment treatment = StiffnessTreatment::definite) {
     ForceField f2(scene);
-    ImplicitEuler ie(f2, {1e-8, 1, kind, StiffnessTreatment::definite});
+    ImplicitEuler ie(f2, {1e-8, 1, kind, treatment});
     Vector xs = x, vs = v;
     std::size_t i = 0;
     const auto next = [&] {
@@ -181,6 +197,10 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
                        "cg_iterations_per_solve"));
   };
   newton_iteration(LinearSolverKind::ldlt, "newton_iteration_ldlt");
+  // The exact Jacobian, with the solvers a damped cloth's non-symmetric matrix needs (this scene's may be undamped,
+  // its matrix then symmetric, but the general factorizations do not know it and do their full work).
+  newton_iteration(LinearSolverKind::ldu, "newton_iteration_ldu_exact", StiffnessTreatment::exact);
+  newton_iteration(LinearSolverKind::lu, "newton_iteration_sparselu_exact", StiffnessTreatment::exact);
   newton_iteration(LinearSolverKind::cg, "newton_iteration_cg_warm");
 
   // Runge-Kutta: the generic tableau engine against RK4 written out by hand, on the same forces.

@@ -12,6 +12,7 @@ namespace cloth {
 const char* linear_solver_name(LinearSolverKind kind) {
   switch (kind) {
     case LinearSolverKind::ldlt: return "ldlt";
+    case LinearSolverKind::ldu: return "ldu";
     case LinearSolverKind::cg: return "cg";
     case LinearSolverKind::lu: return "lu";
     case LinearSolverKind::automatic: return "automatic";
@@ -21,7 +22,7 @@ const char* linear_solver_name(LinearSolverKind kind) {
 
 NewtonSettings resolve(NewtonSettings settings, const Scene& scene) {
   if (settings.solver == LinearSolverKind::automatic)
-    settings.solver = settings.treatment == StiffnessTreatment::exact && scene.has_damping() ? LinearSolverKind::lu
+    settings.solver = settings.treatment == StiffnessTreatment::exact && scene.has_damping() ? LinearSolverKind::ldu
                                                                                               : LinearSolverKind::ldlt;
   return settings;
 }
@@ -33,10 +34,10 @@ void validate(const NewtonSettings& settings, const Scene& scene) {
   if (s.max_iterations < 1) throw InputError("--newton-max-iter: expected a whole number >= 1");
   if (s.solver == LinearSolverKind::cg && s.treatment != StiffnessTreatment::definite)
     throw InputError("--linear-solver cg needs a symmetric positive definite matrix: use --jacobian definite "
-                     "with it, or --linear-solver ldlt or lu");
+                     "with it, or --linear-solver ldlt, ldu or lu");
   if (s.solver == LinearSolverKind::ldlt && s.treatment == StiffnessTreatment::exact && scene.has_damping())
     throw InputError("--linear-solver ldlt needs a symmetric matrix, and the exact Jacobian of a damped cloth is "
-                     "not: use --linear-solver lu, or --jacobian symmetric or definite");
+                     "not: use --linear-solver ldu or lu, or --jacobian symmetric or definite");
 }
 
 std::string ImplicitEuler::name() const {
@@ -52,7 +53,8 @@ ImplicitEuler::ImplicitEuler(ForceField& field, NewtonSettings settings)
   warm_dv_ = Vector::Zero(n);
   residuals_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 1);
   // The pattern never changes, so the fill-reducing ordering and the symbolic factorization are done once.
-  if (settings_.solver == LinearSolverKind::ldlt) ldlt_.analyzePattern(A_);
+  if (settings_.solver == LinearSolverKind::ldlt) block_.analyze(A_, BlockLDU::Symmetry::symmetric);
+  if (settings_.solver == LinearSolverKind::ldu) block_.analyze(A_, BlockLDU::Symmetry::general);
   if (settings_.solver == LinearSolverKind::lu) lu_.analyzePattern(A_);
 }
 
@@ -67,13 +69,15 @@ bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
   auto t0 = clock::now();
   switch (settings_.solver) {
     case LinearSolverKind::ldlt:
-      ldlt_.factorize(A_);
+    case LinearSolverKind::ldu: {
+      const bool factored = block_.factorize(A_);
       ++counters_.factorizations;
       timing_.factorization += seconds_since(t0);
-      if (ldlt_.info() != Eigen::Success) return false;
+      if (!factored) return false;
       t0 = clock::now();
-      dv = ldlt_.solve(rhs);
+      block_.solve(rhs, dv);
       break;
+    }
     case LinearSolverKind::lu:
       lu_.factorize(A_);
       ++counters_.factorizations;

@@ -2,10 +2,10 @@
 // the analytic sparse Jacobian J = M - h df/dv - h^2 df/dx, then x1 = x0 + h v1.
 #pragma once
 
+#include "integrators/block_ldu.hpp"
 #include "integrators/pcg.hpp"
 #include "integrators/stepper.hpp"
 
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <memory>
 #include <string>
@@ -15,10 +15,12 @@ namespace cloth {
 
 /// How each Newton system J dv = -r is solved.
 enum class LinearSolverKind {
-  ldlt,  ///< sparse LDL^T, fill-reducing ordering analysed once per scene, numeric factorization per iteration
+  ldlt,  ///< block LDL^T on the particles' 3x3 blocks (BlockLDU), ordering analysed once per scene: symmetric J
+  ldu,   ///< block LDU, the same factorization for the exact, non-symmetric Jacobian of a damped cloth
   cg,    ///< conjugate gradients with a block-Jacobi (3x3) preconditioner, warm-started; needs the definite matrix
-  lu,    ///< sparse LU: the only choice for the exact, non-symmetric Jacobian of a damped cloth
-  automatic  ///< chosen for the matrix: lu for the exact Jacobian of a damped cloth, ldlt otherwise
+  lu,    ///< Eigen's sparse LU with partial pivoting: any matrix, slower; the reference the block solvers are
+         ///< tested against
+  automatic  ///< chosen for the matrix: ldu for the exact Jacobian of a damped cloth, ldlt otherwise
 };
 const char* linear_solver_name(LinearSolverKind kind);
 
@@ -39,7 +41,7 @@ struct NewtonSettings {
 };
 
 /// The settings with `automatic` replaced by the solver the matrix calls for: the exact Jacobian of a damped
-/// cloth is not symmetric, so it gets lu; every other treatment gives a symmetric matrix, which gets ldlt.
+/// cloth is not symmetric, so it gets ldu; every other treatment gives a symmetric matrix, which gets ldlt.
 NewtonSettings resolve(NewtonSettings settings, const Scene& scene);
 
 /// Throws InputError when the solver cannot take the matrix the treatment gives (CG needs the definite one,
@@ -69,7 +71,7 @@ class ImplicitEuler final : public Stepper {
 
   NewtonSettings settings_;
   SparseMatrix A_;
-  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+  BlockLDU block_;
   BlockJacobiPCG cg_;
   Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu_;
   Vector v1_, x1_, f_, r_, dv_, warm_dv_;

@@ -1,0 +1,63 @@
+// A sparse direct solver made for the cloth's Newton matrix (Chapter 6): it factors the 396-particle graph, not
+// the 1188-row matrix, so every entry it touches is a particle's dense 3x3 block. A = L D L^T for a symmetric
+// matrix, A = L D U for the exact, non-symmetric Jacobian of a damped cloth (whose pattern is still symmetric).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "cloth/force_field.hpp"
+
+namespace cloth {
+
+/// A = P^T L D U P on 3x3 blocks: L unit lower and U unit upper block-triangular, D block diagonal, P a
+/// fill-reducing ordering of the particles (approximate minimum degree on the particle graph; Amestoy, Davis &
+/// Duff 1996). Symmetric mode has U = L^T and does half the work. Pivoting happens only inside a 3x3 diagonal
+/// block (each D_k is inverted whole), which is enough for the matrices implicit Euler makes: they are M plus
+/// O(h) terms, dominated by their diagonal blocks unless h is very large; a D_k that is singular to working
+/// precision is reported as a failed factorization rather than pivoted around.
+///
+/// The matrix comes in ForceField's storage: column-major, both triangles, every block full and its three rows
+/// consecutive. analyze() looks at the pattern once per scene; factorize() and solve() allocate nothing.
+class BlockLDU {
+ public:
+  enum class Symmetry { symmetric, general };
+
+  /// The ordering and the symbolic factorization (the pattern of L), for matrices with A's pattern.
+  void analyze(const SparseMatrix& A, Symmetry symmetry);
+
+  /// The numeric factorization of A (same pattern as in analyze()). Returns false, and keeps no usable factor,
+  /// when a pivot block D_k is singular to working precision or not finite.
+  bool factorize(const SparseMatrix& A);
+
+  /// x = A^{-1} b with the last successful factorization (x and b may not alias).
+  void solve(const Vector& b, Vector& x);
+
+  /// Number of 3x3 blocks stored in L strictly below the diagonal (the fill the ordering leaves).
+  [[nodiscard]] long factor_blocks() const { return static_cast<long>(row_of_entry_.size()); }
+  /// Multiply-adds of one numeric factorization, counted from the symbolic pattern.
+  [[nodiscard]] double factorization_flops() const;
+
+ private:
+  using Block = Eigen::Matrix3d;
+
+  Symmetry symmetry_ = Symmetry::symmetric;
+  int n_ = 0;               // particles (block columns)
+  std::vector<int> order_;  // order_[k]: the particle eliminated k-th
+  // L's strict lower part by block columns, rows ascending (compressed column storage of blocks).
+  std::vector<int> column_start_, row_of_entry_;
+  // The same pattern by rows: for row k, the columns j < k with L(k, j) != 0 and where that block is stored.
+  std::vector<int> row_start_, column_of_row_entry_, entry_of_row_entry_;
+  // Where A's blocks go: for block column k, the blocks A(order[t], order[k]) with t >= k, by the target t and
+  // the value indices of the block's three columns in A (and of its transpose A(order[k], order[t])).
+  std::vector<int> gather_start_, gather_target_;
+  std::vector<std::array<int, 3>> gather_lower_, gather_upper_;
+
+  std::vector<Block> L_, Ut_;         // L(i, k) and U(k, i)^T, in the entries of L's pattern
+  std::vector<Block> D_, D_inverse_;  // the pivot blocks D_k and their inverses
+  std::vector<Block> column_, row_;   // dense work column of L and row of U (as transposes), one block per row
+  std::vector<Eigen::Vector3d> y_;    // the solve's permuted work vector
+};
+
+}  // namespace cloth
