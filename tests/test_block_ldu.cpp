@@ -66,16 +66,16 @@ TEST_CASE("block LDU solves the Newton matrices of a folded, damped cloth as Eig
     // Without pivoting across blocks, stability is guaranteed only for the definite matrix (block LDL^T of an
     // SPD matrix has no element growth); the indefinite ones lose a few digits to growth (measured here: backward
     // error 5.6e-14 symmetric, 2.1e-13 exact, against 7e-17 and 1.5e-16 for the pivoting LU). Newton asks its
-    // update for 1e-8 relative accuracy, so the bound below is what matters for implicit Euler.
+    // update for 1e-8 relative accuracy, so the bound below (1e-10) is what matters for implicit Euler.
     const bool definite = c.treatment == StiffnessTreatment::definite;
-    CHECK(backward_error(A, x, b) < (definite ? 50 * testing::unit_roundoff : 1e-11));
+    CHECK(backward_error(A, x, b) < (definite ? 50 * testing::unit_roundoff : 1e-10));
     CHECK((x - reference).lpNorm<Eigen::Infinity>() <= (definite ? 1e-13 : 1e-9) * reference.lpNorm<Eigen::Infinity>());
 
     // Refactorizing new values in the same pattern (the Newton loop's use) gives the new solution.
     field.newton_matrix(s.x, s.v, 0.5 * h, c.treatment, A);
     REQUIRE(block.factorize(A));
     block.solve(b, x);
-    CHECK(backward_error(A, x, b) < (definite ? 50 * testing::unit_roundoff : 1e-11));
+    CHECK(backward_error(A, x, b) < (definite ? 50 * testing::unit_roundoff : 1e-10));
   }
 }
 
