@@ -3,7 +3,7 @@
 set terminal pngcairo size 900,620 enhanced font 'Sans,11'
 set grid
 set key outside right top
-methods = "explicit_euler symplectic_euler heun rk4 rule38 implicit_euler_ldlt implicit_euler_cg implicit_euler_1newton_ldlt implicit_euler_1newton_cg"
+methods = "explicit_euler symplectic_euler heun rk4 rule38 implicit_euler_direct implicit_euler_cg implicit_euler_1newton_direct implicit_euler_1newton_cg"
 titles = methods
 set style line 1 lc rgb '#d62728' pt 5
 set style line 2 lc rgb '#ff7f0e' pt 7
@@ -65,7 +65,7 @@ fit f3(x) data.'/scaling.dat' index 2 using (log($3)):(log($10)) via a3, b3
 fit f4(x) data.'/scaling.dat' index 3 using (log($3)):(log($10)) via a4, b4
 plot data.'/scaling.dat' index 0 using 3:10 with linespoints ls 1 lw 1.5 title sprintf('explicit_euler, exponent %.2f', b1) noenhanced, \
      '' index 1 using 3:10 with linespoints ls 4 lw 1.5 title sprintf('rk4, exponent %.2f', b2), \
-     '' index 2 using 3:10 with linespoints ls 6 lw 1.5 title sprintf('implicit ldlt, exponent %.2f', b3), \
+     '' index 2 using 3:10 with linespoints ls 6 lw 1.5 title sprintf('implicit direct (block LDL^T), exponent %.2f', b3), \
      '' index 3 using 3:10 with linespoints ls 7 lw 1.5 title sprintf('implicit cg, exponent %.2f', b4)
 unset format
 

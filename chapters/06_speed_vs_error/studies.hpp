@@ -31,7 +31,7 @@ struct Trajectory {
 Trajectory run_sampled(cloth::Stepper& stepper, double T, long long steps, int samples);
 
 /// A method of the sweep by its row name (explicit_euler, symplectic_euler, heun, rk4, rule38,
-/// implicit_euler_ldlt, implicit_euler_cg, implicit_euler_1newton_ldlt, implicit_euler_1newton_cg).
+/// implicit_euler_direct, implicit_euler_cg, implicit_euler_1newton_direct, implicit_euler_1newton_cg).
 std::unique_ptr<cloth::Stepper> make_method(const std::string& name, cloth::ForceField& field);
 const std::vector<std::string>& sweep_methods();
 

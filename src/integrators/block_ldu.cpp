@@ -95,12 +95,12 @@ void BlockLDU::analyze(const SparseMatrix& A, Symmetry symmetry) {
   }
 
   const auto blocks = row_of_entry_.size();
-  L_.assign(blocks, Block::Zero());
-  Ut_.assign(symmetry == Symmetry::general ? blocks : 0, Block::Zero());
+  L_.assign(blocks, PaddedBlock::Zero());
+  Ut_.assign(symmetry == Symmetry::general ? blocks : 0, PaddedBlock::Zero());
   D_.assign(n_, Block::Zero());
   D_inverse_.assign(n_, Block::Zero());
-  column_.assign(n_, Block::Zero());
-  row_.assign(symmetry == Symmetry::general ? n_ : 0, Block::Zero());
+  column_.assign(n_, PaddedBlock::Zero());
+  row_.assign(symmetry == Symmetry::general ? n_ : 0, PaddedBlock::Zero());
   y_.assign(n_, Eigen::Vector3d::Zero());
 }
 
@@ -140,8 +140,8 @@ bool BlockLDU::factorize(const SparseMatrix& A) {
       const auto j = column_of_row_entry_[r];
       const int first = entry_of_row_entry_[r];  // L(k, j)
       const int end = column_start_[j + 1];
-      const Block& L_kj = L_[first];
-      const Block DU = general ? Block(D_[j] * Ut_[first].transpose()) : Block(D_[j] * L_kj.transpose());
+      const auto L_kj = L_[first].topRows<3>();
+      const Block DU = D_[j] * (general ? Ut_[first].topRows<3>() : L_kj).transpose();
       for (int e = first; e < end; ++e) column_[row_of_entry_[e]].noalias() -= L_[e] * DU;
       if (general) {
         const Block LDt = (L_kj * D_[j]).transpose();
@@ -150,13 +150,13 @@ bool BlockLDU::factorize(const SparseMatrix& A) {
     }
     // The pivot block D_k, inverted whole. |det| against the product of its column norms (Hadamard's bound)
     // is a scale-free test: it is 1 for orthogonal columns and 0 for dependent ones.
-    D_[k] = column_[k];
+    D_[k] = column_[k].topRows<3>();
     column_[k].setZero();
     const double det = D_[k].determinant();
     const double bound = D_[k].col(0).norm() * D_[k].col(1).norm() * D_[k].col(2).norm();
     if (!std::isfinite(det) || !(std::abs(det) > 64 * std::numeric_limits<double>::epsilon() * bound)) {
-      for (Block& w : column_) w.setZero();
-      for (Block& w : row_) w.setZero();
+      for (PaddedBlock& w : column_) w.setZero();
+      for (PaddedBlock& w : row_) w.setZero();
       return false;
     }
     D_inverse_[k] = D_[k].inverse();
@@ -176,14 +176,15 @@ bool BlockLDU::factorize(const SparseMatrix& A) {
 // [block_ldu_factorize]
 
 void BlockLDU::solve(const Vector& b, Vector& x) {
-  const std::vector<Block>& U_transposed = symmetry_ == Symmetry::general ? Ut_ : L_;
+  const std::vector<PaddedBlock>& U_transposed = symmetry_ == Symmetry::general ? Ut_ : L_;
   for (int k = 0; k < n_; ++k) y_[k] = b.segment<3>(3 * order_[k]);
   for (int k = 0; k < n_; ++k)  // L y = P b
-    for (int e = column_start_[k]; e < column_start_[k + 1]; ++e) y_[row_of_entry_[e]] -= L_[e] * y_[k];
+    for (int e = column_start_[k]; e < column_start_[k + 1]; ++e)
+      y_[row_of_entry_[e]] -= L_[e].topRows<3>() * y_[k];
   for (int k = 0; k < n_; ++k) y_[k] = D_inverse_[k] * y_[k];
   for (int k = n_ - 1; k >= 0; --k)  // U z = D^{-1} y
     for (int e = column_start_[k]; e < column_start_[k + 1]; ++e)
-      y_[k] -= U_transposed[e].transpose() * y_[row_of_entry_[e]];
+      y_[k] -= U_transposed[e].topRows<3>().transpose() * y_[row_of_entry_[e]];
   for (int k = 0; k < n_; ++k) x.segment<3>(3 * order_[k]) = y_[k];
 }
 

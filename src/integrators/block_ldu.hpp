@@ -54,9 +54,12 @@ class BlockLDU {
   std::vector<int> gather_start_, gather_target_;
   std::vector<std::array<int, 3>> gather_lower_, gather_upper_;
 
-  std::vector<Block> L_, Ut_;         // L(i, k) and U(k, i)^T, in the entries of L's pattern
-  std::vector<Block> D_, D_inverse_;  // the pivot blocks D_k and their inverses
-  std::vector<Block> column_, row_;   // dense work column of L and row of U (as transposes), one block per row
+  // The blocks of L and U^T and the work blocks carry a fourth row of zeros, so that each of their columns is
+  // two whole SIMD registers of two doubles: the 3x3 updates then vectorize.
+  using PaddedBlock = Eigen::Matrix<double, 4, 3>;
+  std::vector<PaddedBlock> L_, Ut_;        // L(i, k) and U(k, i)^T, in the entries of L's pattern
+  std::vector<Block> D_, D_inverse_;       // the pivot blocks D_k and their inverses
+  std::vector<PaddedBlock> column_, row_;  // dense work column of L and row of U (as transposes), one per row
   std::vector<Eigen::Vector3d> y_;    // the solve's permuted work vector
 };
 
