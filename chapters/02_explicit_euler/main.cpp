@@ -1,9 +1,9 @@
 // Chapter 2: explicit Euler on the report's cloth, symplectic Euler beside it, and the measurement of explicit
 // Euler's energy growth factor (1 + (h omega)^2) per step on an undamped spring.
-#include "cloth/fastest_modes.hpp"
-#include "chapters/02_explicit_euler/single_spring.hpp"
 #include "cloth/command_line.hpp"
+#include "cloth/fastest_modes.hpp"
 #include "cloth/input_error.hpp"
+#include "cloth/single_spring.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/simulate.hpp"
 

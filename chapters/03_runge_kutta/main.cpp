@@ -1,9 +1,9 @@
 // Chapter 3: any explicit Runge-Kutta method, given by its Butcher tableau (a built-in name or a file), on the
 // report's cloth; and the observed order of every built-in tableau on the single spring of Chapter 2.
-#include "cloth/fastest_modes.hpp"
-#include "chapters/02_explicit_euler/single_spring.hpp"
 #include "cloth/command_line.hpp"
+#include "cloth/fastest_modes.hpp"
 #include "cloth/input_error.hpp"
+#include "cloth/single_spring.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/simulate.hpp"
 
