@@ -2,6 +2,7 @@
 // Euler's energy growth factor (1 + (h omega)^2) per step on an undamped spring.
 #include "cloth/command_line.hpp"
 #include "cloth/fastest_modes.hpp"
+#include "cloth/format_number.hpp"
 #include "cloth/input_error.hpp"
 #include "cloth/single_spring.hpp"
 #include "integrators/methods.hpp"
@@ -76,18 +77,12 @@ int run_cloth(const SceneParams& params, RunSettings run, const std::string& met
   const double hc_start = run.dt * fastest_damping_rate(field, scene.initial_positions(), scene.initial_velocities());
   const RunResult result = simulate(*stepper, run);
   const double hc_end = run.dt * fastest_damping_rate(field, result.x, result.v);
-  char buf[5][64];
-  std::snprintf(buf[0], sizeof buf[0], "%.6g", omega_max);
-  std::snprintf(buf[1], sizeof buf[1], "%.6g", hw);
-  std::snprintf(buf[2], sizeof buf[2], "%.10g", 1 + hw * hw);
-  std::snprintf(buf[3], sizeof buf[3], "%.4g", hc_start);
-  std::snprintf(buf[4], sizeof buf[4], "%.4g", hc_end);
   write_outputs(result, *stepper, run,
-                {{"omega_max_at_rest", buf[0]},
-                 {"h_omega_max", buf[1]},
-                 {"explicit_euler_growth_per_step", buf[2]},
-                 {"h_c_max_start", buf[3]},
-                 {"h_c_max_end", buf[4]}});
+                {{"omega_max_at_rest", format_number(omega_max)},
+                 {"h_omega_max", format_number(hw)},
+                 {"explicit_euler_growth_per_step", format_number(1 + hw * hw, 10)},
+                 {"h_c_max_start", format_number(hc_start, 4)},
+                 {"h_c_max_end", format_number(hc_end, 4)}});
   std::printf("%s: K = %g, D = %g: fastest mode at rest omega_max = %.4g rad/s, h omega_max = %.4g, explicit Euler "
               "multiplies its energy by %.4g per step\n", program.c_str(), params.stiffness, params.damping, omega_max,
               hw, 1 + hw * hw);

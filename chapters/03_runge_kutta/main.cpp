@@ -2,6 +2,7 @@
 // report's cloth; and the observed order of every built-in tableau on the single spring of Chapter 2.
 #include "cloth/command_line.hpp"
 #include "cloth/fastest_modes.hpp"
+#include "cloth/format_number.hpp"
 #include "cloth/input_error.hpp"
 #include "cloth/single_spring.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
@@ -28,12 +29,9 @@ int run_cloth(const SceneParams& params, RunSettings run, const ButcherTableau& 
   const double hc_start = run.dt * fastest_damping_rate(field, scene.initial_positions(), scene.initial_velocities());
   const RunResult result = simulate(stepper, run);
   const double hc_end = run.dt * fastest_damping_rate(field, result.x, result.v);
-  char hc[2][32];
-  std::snprintf(hc[0], sizeof hc[0], "%.4g", hc_start);
-  std::snprintf(hc[1], sizeof hc[1], "%.4g", hc_end);
   write_outputs(result, stepper, run,
-                {{"h_c_max_start", hc[0]},
-                 {"h_c_max_end", hc[1]},
+                {{"h_c_max_start", format_number(hc_start, 4)},
+                 {"h_c_max_end", format_number(hc_end, 4)},
                  {"tableau", tableau.name},
                  {"tableau_source", source},
                  {"stages", std::to_string(tableau.stages())},

@@ -1,6 +1,7 @@
 // Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the analytic sparse
 // Jacobian; Baraff and Witkin's one-iteration variant beside full Newton; the residuals of one stiff step.
 #include "cloth/command_line.hpp"
+#include "cloth/format_number.hpp"
 #include "cloth/input_error.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
@@ -23,12 +24,6 @@ const char* treatment_name(StiffnessTreatment t) {
   return "?";
 }
 
-std::string num(double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", x);
-  return buf;
-}
-
 struct Outcome {
   int status;
   RunResult result;
@@ -47,7 +42,7 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
   write_outputs(result, stepper, run,
                 {{"linear_solver", linear_solver_name(stepper.settings().solver)},
                  {"jacobian", treatment_name(newton.treatment)},
-                 {"newton_tol", num(newton.tolerance)},
+                 {"newton_tol", format_number(newton.tolerance, 10)},
                  {"newton_max_iter", std::to_string(newton.max_iterations)}});
   const int status = report(result, stepper, program);
   if (result.steps > 0)

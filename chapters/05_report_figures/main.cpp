@@ -3,6 +3,7 @@
 // of the chapter's figures (strain-coloured meshes, energy, sag, animations, heat maps) and their summary tables.
 #include "cloth/command_line.hpp"
 #include "cloth/fastest_modes.hpp"
+#include "cloth/format_number.hpp"
 #include "cloth/input_error.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/simulate.hpp"
@@ -51,14 +52,8 @@ const std::vector<double> sweep_D = {0, 1, 5, 20};
 const std::vector<double> sheet_fractions = {0.05, 0.25, 0.5, 1.0};
 constexpr int movie_frames = 20;
 
-std::string fmt(const char* format, double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, x);
-  return buf;
-}
-
 std::string run_name(const std::string& method, double K, double D) {
-  return method + "_K" + fmt("%g", K) + "_D" + fmt("%g", D);
+  return method + "_K" + format_number(K) + "_D" + format_number(D);
 }
 
 // [energy_measures]
@@ -290,20 +285,20 @@ int main(int argc, char** argv) {
       for (std::size_t k = 0; k < res.frames.size(); k += stride) draw(res.frames[k].positions, res.frames[k].t);
       if (diverged(res)) draw(last, res.t);
       std::fclose(mesh);
-      for (int a = 0; a < 3; ++a) add(gp_box, fmt("%.4g", lo[a]) + ", " + fmt("%.4g", hi[a]));
+      for (int a = 0; a < 3; ++a) add(gp_box, format_number(lo[a], 4) + ", " + format_number(hi[a], 4));
 
       add(gp_names, quote(name));
       add(gp_titles, quote(method_titles[r / configs.size()]));
-      add(gp_status, quote(diverged(res) ? outcome(res, h) : "bounded, max E/E(0) = " + fmt("%.3g", 1 + e.gain)));
-      add(gp_reached, fmt("%.4g", res.t));
+      add(gp_status, quote(diverged(res) ? outcome(res, h) : "bounded, max E/E(0) = " + format_number(1 + e.gain, 3)));
+      add(gp_reached, format_number(res.t, 4));
       add(gp_blocks, std::to_string(blocks));
       for (double frac : sheet_fractions) {
         const int wanted = static_cast<int>(std::lround(frac * movie_frames));
         const bool have = static_cast<std::size_t>(wanted) * stride < res.frames.size();
         add(gp_instants, std::to_string(have ? wanted : blocks - 1));
-        add(gp_labels, quote(have ? "t = " + fmt("%g", frac * T) + " s"
-                                  : "t = " + fmt("%g", frac * T) + " s: " + outcome(res, h) +
-                                        ", last frame t = " + fmt("%.3g", res.t) + " s"));
+        add(gp_labels, quote(have ? "t = " + format_number(frac * T) + " s"
+                                  : "t = " + format_number(frac * T) + " s: " + outcome(res, h) +
+                                        ", last frame t = " + format_number(res.t, 3) + " s"));
       }
     }
     std::fclose(summary);
@@ -318,7 +313,7 @@ int main(int argc, char** argv) {
           for (const Frame& f : run.result.frames) low = std::min(low, lowest_z(base_scene, f.positions));
       }
       add(gp_logscale, worst_gain > 9.0 ? "1" : "0");
-      add(gp_sag_low, fmt("%.3g", 1.15 * low));
+      add(gp_sag_low, format_number(1.15 * low, 3));
     }
 
     std::FILE* gp = std::fopen((dir + "runs.gp").c_str(), "w");
@@ -330,7 +325,7 @@ int main(int argc, char** argv) {
                  configs.size(), sheet_fractions.size());
     std::string ks, ds;
     for (std::size_t c = 0; c < configs.size(); ++c)
-      add(ks, fmt("%g", configs[c].K)), add(ds, fmt("%g", configs[c].D));
+      add(ks, format_number(configs[c].K)), add(ds, format_number(configs[c].D));
     std::fprintf(gp, "array cfg_K[%zu] = [%s]\narray cfg_D[%zu] = [%s]\n", configs.size(), ks.c_str(), configs.size(),
                  ds.c_str());
     std::fprintf(gp, "array run_name[%s] = [%s]\narray run_method[%s] = [%s]\narray run_status[%s] = [%s]\n",
@@ -352,7 +347,7 @@ int main(int argc, char** argv) {
       add(fig_runs, n(m * configs.size() + static_cast<std::size_t>(rf.config) + 1));
       add(fig_numbers, std::to_string(rf.number));
       add(fig_captions, quote("Figure " + std::to_string(rf.number) + ": " + rf.caption_method + " with K=" +
-                              fmt("%g", c.K) + " and D=" + fmt("%g", c.D)));
+                              format_number(c.K) + " and D=" + format_number(c.D)));
     }
     std::fprintf(gp, "array fig_run[%zu] = [%s]\narray fig_number[%zu] = [%s]\narray fig_caption[%zu] = [%s]\n",
                  report_figures.size(), fig_runs.c_str(), report_figures.size(), fig_numbers.c_str(),

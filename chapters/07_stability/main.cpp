@@ -2,6 +2,7 @@
 // spectrum over it, predicts the largest stable step h_max from the two, and measures h_max by bisection on the
 // report scene over a log grid of K, for D = 0 and D = 20.
 #include "cloth/command_line.hpp"
+#include "cloth/format_number.hpp"
 #include "cloth/input_error.hpp"
 #include "cloth/output.hpp"
 #include "cloth/spectrum.hpp"
@@ -151,12 +152,6 @@ Measurement measure(const SceneParams& params, const std::string& method, double
   return m;
 }
 
-std::string num(double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", x);
-  return buf;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -215,8 +210,8 @@ int main(int argc, char** argv) {
       const double real = stability_limit_along([&](double t) { return stable_at({-t, 0}); }, 10);
       const double imag = stability_limit_along([&](double t) { return stable_at({-1e-300, t}); }, 10);
       std::printf("  %-17s real %.4f  imaginary %.4f\n", method.c_str(), real, imag);
-      summary.emplace_back(method + "_real_limit", num(real));
-      summary.emplace_back(method + "_imaginary_limit", num(imag));
+      summary.emplace_back(method + "_real_limit", format_number(real));
+      summary.emplace_back(method + "_imaginary_limit", format_number(imag));
     }
 
     // 2. The spectrum at the rest state. There df/dx = -K L and df/dv = -D L with one longitudinal Laplacian L
@@ -233,7 +228,7 @@ int main(int argc, char** argv) {
                 "out-of-plane stiffness)\n",
                 mu.size(), mu.front(), mu.back(),
                 static_cast<int>(std::count_if(mu.begin(), mu.end(), [&](double u) { return u < 1e-9 * mu.back(); })));
-    summary.emplace_back("rest_L_max_eigenvalue", num(mu.back()));
+    summary.emplace_back("rest_L_max_eigenvalue", format_number(mu.back()));
 
     // The report's three (K, D): their spectra times h over the regions.
     const std::vector<std::pair<double, double>> report_cases = {{50, 0}, {200, 0}, {200, 20}};
@@ -253,7 +248,7 @@ int main(int argc, char** argv) {
       return equilibria.emplace(K, std::move(eq)).first->second;
     };
     for (const auto& [K, D] : report_cases) {
-      const std::string tag = "K" + num(K) + "_D" + num(D);
+      const std::string tag = "K" + format_number(K) + "_D" + format_number(D);
       std::FILE* out = std::fopen((dir + "spectrum_rest_" + tag + ".dat").c_str(), "w");
       std::fprintf(out, "# h lambda at the rest state, h = %g: Re, Im\n", h_plot);
       for (const Mode& mode : rest_modes(mu, K, D, m))
@@ -301,10 +296,10 @@ int main(int argc, char** argv) {
                   "iterations; h max|lambda| = %.3f\n",
                   K, D, -eq.x.minCoeff(), rest_largest, largest, how.c_str(), pw.magnitude, pw.iterations,
                   h_plot * largest);
-      summary.emplace_back("sag_" + tag, num(-eq.x.minCoeff()));
-      summary.emplace_back("max_abs_lambda_rest_" + tag, num(rest_largest));
-      summary.emplace_back("max_abs_lambda_sagged_" + tag, num(largest));
-      summary.emplace_back("power_iteration_sagged_" + tag, num(pw.magnitude));
+      summary.emplace_back("sag_" + tag, format_number(-eq.x.minCoeff()));
+      summary.emplace_back("max_abs_lambda_rest_" + tag, format_number(rest_largest));
+      summary.emplace_back("max_abs_lambda_sagged_" + tag, format_number(largest));
+      summary.emplace_back("power_iteration_sagged_" + tag, format_number(pw.magnitude));
     }
 
     // 3. Predicted and measured h_max over a log grid of K, for D = 0 and D = 20.
@@ -387,7 +382,7 @@ int main(int argc, char** argv) {
           for (double h : full ? std::vector<double>{0.01, 0.1} : std::vector<double>{0.1}) {
             const std::string why = unbounded_reason(p, job.method, h, T, job.E_eq);
             ++job.result.runs;
-            job.outcome += (job.outcome.empty() ? "" : "; ") + std::string("h = ") + num(h) + ": " +
+            job.outcome += (job.outcome.empty() ? "" : "; ") + std::string("h = ") + format_number(h) + ": " +
                            (why.empty() ? "bounded" : why);
             if (why.empty()) job.result.h = h;
             else if (job.result.h_fail == 0) job.result.h_fail = h;

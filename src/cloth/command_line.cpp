@@ -1,12 +1,12 @@
 // Strict parsing of the shared command-line flags of MODEL.md.
 #include "cloth/command_line.hpp"
 
+#include "cloth/format_number.hpp"
 #include "cloth/input_error.hpp"
 
 #include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -45,21 +45,15 @@ long long parse_integer(const std::string& text) {
 
 namespace {
 
-std::string fmt(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
 double positive(const std::string& text) {
   const double x = parse_number(text);
-  if (!(x > 0)) throw InputError("expected a number > 0, got " + fmt(x));
+  if (!(x > 0)) throw InputError("expected a number > 0, got " + format_number(x));
   return x;
 }
 
 double non_negative(const std::string& text) {
   const double x = parse_number(text);
-  if (!(x >= 0)) throw InputError("expected a number >= 0, got " + fmt(x));
+  if (!(x >= 0)) throw InputError("expected a number >= 0, got " + format_number(x));
   return x;
 }
 
@@ -233,7 +227,7 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
     }
   }
   if (opt.run.t_end < opt.run.dt)
-    throw InputError("--t-end: " + fmt(opt.run.t_end) + " is smaller than --dt " + fmt(opt.run.dt) +
+    throw InputError("--t-end: " + format_number(opt.run.t_end) + " is smaller than --dt " + format_number(opt.run.dt) +
                      ": expected t-end >= dt");
   if (opt.run.t_end / opt.run.dt > 1e9)
     throw InputError("--t-end / --dt: more than 1e9 steps asked for; expected at most 1e9");

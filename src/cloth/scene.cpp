@@ -1,11 +1,11 @@
 // Building a scene: pinned set, free-slot numbering, springs and the initial state.
 #include "cloth/scene.hpp"
 
+#include "cloth/format_number.hpp"
 #include "cloth/input_error.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 namespace cloth {
@@ -36,12 +36,6 @@ bool pinned(const Grid& g, PinSet pins, int i, int j) {
   return false;
 }
 
-std::string str(double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
-}
-
 }  // namespace
 
 void validate(const SceneParams& p) {
@@ -52,14 +46,18 @@ void validate(const SceneParams& p) {
   if (static_cast<long long>(g.M) * g.N > max_particles)
     throw InputError("grid " + std::to_string(g.M) + "x" + std::to_string(g.N) + " has more than " +
                      std::to_string(max_particles) + " particles, the largest this program accepts");
-  if (!(std::isfinite(g.d) && g.d > 0)) throw InputError("spacing " + str(g.d) + ": expected a finite number > 0");
+  if (!(std::isfinite(g.d) && g.d > 0))
+    throw InputError("spacing " + format_number(g.d) + ": expected a finite number > 0");
   if (!(std::isfinite(p.stiffness) && p.stiffness > 0))
-    throw InputError("stiffness K = " + str(p.stiffness) + ": expected a finite number > 0");
+    throw InputError("stiffness K = " + format_number(p.stiffness) + ": expected a finite number > 0");
   if (!(std::isfinite(p.damping) && p.damping >= 0))
-    throw InputError("damping D = " + str(p.damping) + ": expected a finite number >= 0");
-  if (!std::isfinite(p.initial_velocity_z)) throw InputError("v0 = " + str(p.initial_velocity_z) + ": expected a finite number");
-  if (!(std::isfinite(p.mass) && p.mass > 0)) throw InputError("mass = " + str(p.mass) + ": expected a finite number > 0");
-  if (!(std::isfinite(p.gravity) && p.gravity >= 0)) throw InputError("gravity = " + str(p.gravity) + ": expected a finite number >= 0");
+    throw InputError("damping D = " + format_number(p.damping) + ": expected a finite number >= 0");
+  if (!std::isfinite(p.initial_velocity_z))
+    throw InputError("v0 = " + format_number(p.initial_velocity_z) + ": expected a finite number");
+  if (!(std::isfinite(p.mass) && p.mass > 0))
+    throw InputError("mass = " + format_number(p.mass) + ": expected a finite number > 0");
+  if (!(std::isfinite(p.gravity) && p.gravity >= 0))
+    throw InputError("gravity = " + format_number(p.gravity) + ": expected a finite number >= 0");
   if (!(p.families.on[0] || p.families.on[1] || p.families.on[2]))
     throw InputError("springs: at least one family of structural, shear, flexion is needed");
   int free = 0;
