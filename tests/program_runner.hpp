@@ -90,6 +90,25 @@ inline ProgramRun run_chapter(const std::string& program, const std::vector<std:
   return run;
 }
 
+/// A scratch folder holding an empty working folder `cwd()`, from which chapter programs are run as a reader runs
+/// them: what a program writes relative to where it runs lands in `cwd()`, and stays apart from the scratch
+/// folder's other files (test inputs, captured stdout and stderr).
+class ProgramFolder {
+ public:
+  ProgramFolder() : cwd_(scratch_.path() / "cwd") { fs::create_directory(cwd_); }
+  [[nodiscard]] const fs::path& scratch() const { return scratch_.path(); }
+  [[nodiscard]] const fs::path& cwd() const { return cwd_; }
+  /// run_chapter(program, args) in cwd().
+  [[nodiscard]] ProgramRun run(const std::string& program, const std::vector<std::string>& args,
+                               int time_guard_seconds = 120) const {
+    return run_chapter(program, args, cwd_, time_guard_seconds);
+  }
+
+ private:
+  ScratchDir scratch_;
+  fs::path cwd_;
+};
+
 /// Every line of a text file that is not a '#' comment and not blank.
 inline std::vector<std::string> data_lines(const fs::path& path) {
   std::ifstream in(path);

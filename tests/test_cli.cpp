@@ -45,18 +45,16 @@ std::string joined(const std::vector<std::string>& args) {
 /// a case's own --out comes later on the line and wins.
 void expect_refused(const std::string& program, const std::vector<BadInput>& cases) {
   for (const BadInput& c : cases) {
-    ScratchDir scratch;
-    const fs::path cwd = scratch.path() / "cwd";
-    fs::create_directory(cwd);
-    write_tableau_files(scratch.path());
-    std::vector<std::string> args = {"--out", (cwd / "out").string()};
+    const ProgramFolder folder;
+    write_tableau_files(folder.scratch());
+    std::vector<std::string> args = {"--out", (folder.cwd() / "out").string()};
     for (std::string a : c.args) {
-      if (a.rfind("@S", 0) == 0) a = scratch.path().string() + a.substr(2);
+      if (a.rfind("@S", 0) == 0) a = folder.scratch().string() + a.substr(2);
       args.push_back(a);
     }
     // 20 s is a guard against a hang, not a timing check: a refused grid returns in milliseconds, while one that
     // was allocated (1e10 particles) would fail with bad_alloc or be stopped here, status != 2 either way.
-    const ProgramRun run = run_chapter(program, args, cwd, 20);
+    const ProgramRun run = folder.run(program, args, 20);
     CAPTURE(program);
     const std::string command = joined(c.args);
     CAPTURE(command);
@@ -69,8 +67,8 @@ void expect_refused(const std::string& program, const std::vector<BadInput>& cas
       CAPTURE(e);
       CHECK(run.err.find(e) != std::string::npos);
     }
-    CHECK(entry_count(cwd) == 0);  // nothing written: no out folder, no default ./<program> folder
-    CHECK(fs::is_regular_file(scratch.path() / "a_file"));
+    CHECK(entry_count(folder.cwd()) == 0);  // nothing written: no out folder, no default ./<program> folder
+    CHECK(fs::is_regular_file(folder.scratch() / "a_file"));
   }
 }
 
@@ -205,16 +203,14 @@ TEST_CASE("ch01_springs: bad input gives status 2, one line naming the flag, not
 }
 
 TEST_CASE("ch01_springs: good input does write its folder (so the checks above can fail)") {
-  ScratchDir scratch;
-  const fs::path cwd = scratch.path() / "cwd";
-  fs::create_directory(cwd);
-  const ProgramRun run = run_chapter("ch01_springs", {"--grid", "4x5", "--out", "out"}, cwd);
+  const ProgramFolder folder;
+  const ProgramRun run = folder.run("ch01_springs", {"--grid", "4x5", "--out", "out"});
   CHECK(run.status == 0);
-  CHECK(fs::is_regular_file(cwd / "out" / "gradient_check.txt"));
-  const ProgramRun help = run_chapter("ch01_springs", {"--help", "--out", "help_out"}, cwd);
+  CHECK(fs::is_regular_file(folder.cwd() / "out" / "gradient_check.txt"));
+  const ProgramRun help = folder.run("ch01_springs", {"--help", "--out", "help_out"});
   CHECK(help.status == 0);
   CHECK(help.out.find("--grid MxN") != std::string::npos);
-  CHECK(!fs::exists(cwd / "help_out"));
+  CHECK(!fs::exists(folder.cwd() / "help_out"));
 }
 #endif
 

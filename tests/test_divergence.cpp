@@ -184,10 +184,9 @@ TEST_CASE("a linear solve that fails inside Newton fails the step instead of bei
 
 #ifdef CLOTH_HAVE_CH02_EXPLICIT_EULER
 TEST_CASE("ch02_explicit_euler --K 100000 --t-end 1: status 3, step and time on stderr, sane outputs kept") {
-  ScratchDir scratch;
-  const fs::path cwd = scratch.path() / "cwd";
-  fs::create_directory(cwd);
-  const ProgramRun run = run_chapter("ch02_explicit_euler", {"--K", "100000", "--t-end", "1", "--out", "out"}, cwd);
+  const ProgramFolder folder;
+  const fs::path& cwd = folder.cwd();
+  const ProgramRun run = folder.run("ch02_explicit_euler", {"--K", "100000", "--t-end", "1", "--out", "out"});
   CAPTURE(run.err);
   CHECK(run.status == 3);
   CHECK(contains(run.err, "diverged at step "));
@@ -201,11 +200,10 @@ TEST_CASE("ch02_explicit_euler --K 100000 --t-end 1: status 3, step and time on 
 #ifdef CLOTH_HAVE_CH03_RUNGE_KUTTA
 TEST_CASE("ch03_runge_kutta rk4 at K = 100000, h = 0.01 diverges: status 3 and the sane outputs kept") {
   // h sqrt(K/m) times the largest spring-network factor is far outside RK4's stability interval (|z| < 2.8).
-  ScratchDir scratch;
-  const fs::path cwd = scratch.path() / "cwd";
-  fs::create_directory(cwd);
+  const ProgramFolder folder;
+  const fs::path& cwd = folder.cwd();
   const ProgramRun run =
-      run_chapter("ch03_runge_kutta", {"--tableau", "rk4", "--K", "100000", "--t-end", "1", "--out", "out"}, cwd);
+      folder.run("ch03_runge_kutta", {"--tableau", "rk4", "--K", "100000", "--t-end", "1", "--out", "out"});
   CAPTURE(run.err);
   CHECK(run.status == 3);
   CHECK(contains(run.err, "diverged at step "));
@@ -215,14 +213,10 @@ TEST_CASE("ch03_runge_kutta rk4 at K = 100000, h = 0.01 diverges: status 3 and t
 
 #ifdef CLOTH_HAVE_CH04_IMPLICIT_EULER
 TEST_CASE("ch04_implicit_euler with Newton capped at 2 iterations on a stiff cloth: status 3, never accepted") {
-  ScratchDir scratch;
-  const fs::path cwd = scratch.path() / "cwd";
-  fs::create_directory(cwd);
-  const ProgramRun run =
-      run_chapter("ch04_implicit_euler",
-                  {"--K", "100000", "--grid", "8x8", "--t-end", "0.1", "--newton-max-iter", "2", "--newton-tol", "1e-14",
-                   "--out", "out"},
-                  cwd);
+  const ProgramFolder folder;
+  const fs::path& cwd = folder.cwd();
+  const ProgramRun run = folder.run("ch04_implicit_euler", {"--K", "100000", "--grid", "8x8", "--t-end", "0.1",
+                                                            "--newton-max-iter", "2", "--newton-tol", "1e-14", "--out", "out"});
   CAPTURE(run.err);
   CHECK(run.status == 3);
   CHECK(contains(run.err, "step 1, t = 0.01"));

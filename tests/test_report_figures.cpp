@@ -14,21 +14,17 @@ using namespace cloth_test;
 
 #ifdef CLOTH_HAVE_CH05_REPORT_FIGURES
 TEST_CASE("ch05_report_figures --threads 0: status 2, the flag named, nothing written") {
-  ScratchDir scratch;
-  const fs::path cwd = scratch.path() / "cwd";
-  fs::create_directory(cwd);
-  const ProgramRun run = run_chapter("ch05_report_figures", {"--threads", "0", "--out", "out"}, cwd);
+  const ProgramFolder folder;
+  const ProgramRun run = folder.run("ch05_report_figures", {"--threads", "0", "--out", "out"});
   CHECK(run.status == 2);
   CHECK(run.err.find("--threads") != std::string::npos);
-  CHECK(entry_count(cwd) == 0);
+  CHECK(entry_count(folder.cwd()) == 0);
 }
 
 TEST_CASE("ch05_report_figures on an 8x8 cloth: full grid, unstretched start, energy verdicts") {
-  ScratchDir scratch;
-  const fs::path cwd = scratch.path() / "cwd";
-  fs::create_directory(cwd);
-  const ProgramRun run =
-      run_chapter("ch05_report_figures", {"--grid", "8x8", "--t-end", "0.5", "--no-sweep", "--out", "out"}, cwd);
+  const ProgramFolder folder;
+  const fs::path& cwd = folder.cwd();
+  const ProgramRun run = folder.run("ch05_report_figures", {"--grid", "8x8", "--t-end", "0.5", "--no-sweep", "--out", "out"});
   CAPTURE(run.err);
   REQUIRE(run.status == 0);
 
