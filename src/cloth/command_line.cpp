@@ -3,6 +3,7 @@
 
 #include "cloth/format_number.hpp"
 #include "cloth/input_error.hpp"
+#include "cloth/output.hpp"
 
 #include <cctype>
 #include <cerrno>
@@ -261,6 +262,11 @@ int run_program(const std::string& program, const std::function<int()>& body) {
     return 0;
   } catch (const InputError& e) {
     std::cerr << program << ": " << e.what() << "\n";
+    return 2;
+  } catch (const OutputError& e) {
+    // The folder --out names cannot take the outputs: the contract's status for an unwritable --out, although
+    // here some files may already be written.
+    std::cerr << program << ": --out: " << e.what() << "\n";
     return 2;
   }
 }

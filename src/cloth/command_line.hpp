@@ -63,8 +63,9 @@ long long parse_integer(const std::string& text);
 /// Creates the output folder (and its parents). Throws InputError when it cannot be created or written.
 void prepare_output_dir(const std::string& dir, const std::string& flag = "--out");
 
-/// Runs a chapter's main body: InputError gives one line "program: message" on stderr and exit status 2,
-/// --help gives exit status 0. The body returns the exit status (0 finished, 3 diverged).
+/// Runs a chapter's main body: InputError gives one line "program: message" on stderr and exit status 2, and so
+/// does OutputError (an output file not written in full), --help gives exit status 0. The body returns the exit
+/// status (0 finished, 3 diverged).
 int run_program(const std::string& program, const std::function<int()>& body);
 
 }  // namespace cloth

@@ -3,11 +3,20 @@
 
 #include "cloth/force_field.hpp"
 
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace cloth {
+
+/// A file that could not be written in full: it could not be opened, or the system refused a write (a full disk,
+/// an I/O error). The message names the file and the system's reason. Chapter programs turn it into one line on
+/// stderr and exit status 2, as for an --out folder that cannot be written (cloth::run_program).
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 /// One line of energy.dat.
 struct EnergySample {
@@ -21,6 +30,8 @@ struct Frame {
   Vector positions;
 };
 
+// Each writer throws OutputError when its file is not written in full.
+
 /// final.dat: `i j x y z vx vy vz` per particle, pinned ones included, 17 significant digits.
 void write_final(const std::string& path, const Scene& scene, const ConstVectorRef& x, const ConstVectorRef& v);
 
@@ -33,6 +44,5 @@ void write_frames(const std::string& path, const Grid& grid, const std::vector<F
 
 /// run.txt: `key = value` lines, in the given order.
 void write_key_values(const std::string& path, const std::vector<std::pair<std::string, std::string>>& entries);
-
 
 }  // namespace cloth
