@@ -51,6 +51,43 @@ set title 'Shortest spring over the cloth, K = 50, D = 0, RK4 (20x20)' enhanced
 plot data.'/near_zero.dat' using 1:2 with lines lw 2 title 'min over springs of l/L_0'
 unset format
 
+set output plots.'/ch06_order_loss.png'
+set terminal pngcairo size 1300,560 enhanced font 'Sans,11'
+set multiplot layout 1,2
+set logscale y
+set logscale y2
+set format y '10^{%L}'
+set format y2 '10^{%L}'
+set ytics nomirror
+set y2tics
+set xlabel 't [s]'
+set ylabel 'local error of one RK4 step, h = 10^{-3} s [m]'
+set y2label 'shortest spring, l / L_0'
+set key inside bottom left box opaque
+set title 'Where RK4 makes its error, K = 50, D = 0' enhanced
+plot data.'/local_error_h1000us.dat' using 1:2 with lines lw 1.5 lc rgb '#2ca02c' title 'local error estimate', \
+     '' using 1:4 axes x1y2 with lines lw 1.5 lc rgb '#d62728' title 'shortest spring (right axis)'
+unset y2tics
+unset y2label
+unset logscale y2
+set ytics mirror
+set logscale xy
+set format x '10^{%L}'
+set xlabel 'h [s]'
+set ylabel '|x_h(T) - x_{h/2}(T)|, largest over particles [m]'
+set key inside bottom right box opaque
+set title 'Step halving: T = 0.25 s (solid), T = 1 s (dashed), K = 50, D = 0' enhanced
+plot data.'/orders.dat' index 4 using 3:4 with linespoints ls 3 lw 1.5 title 'Heun, T = 0.25', \
+     '' index 5 using 3:4 with linespoints ls 3 dt 2 lw 1.5 title 'Heun, T = 1', \
+     '' index 6 using 3:4 with linespoints ls 4 lw 1.5 title 'RK4, T = 0.25', \
+     '' index 7 using 3:4 with linespoints ls 4 dt 2 lw 1.5 title 'RK4, T = 1', \
+     '' index 2 using 3:4 with linespoints ls 2 lw 1.5 title 'symplectic Euler, T = 0.25', \
+     '' index 3 using 3:4 with linespoints ls 2 dt 2 lw 1.5 title 'symplectic Euler, T = 1'
+unset multiplot
+unset format
+set terminal pngcairo size 900,620 enhanced font 'Sans,11'
+set key outside right top
+
 set output plots.'/ch06_scaling.png'
 set logscale xy
 set format y '10^{%L}'

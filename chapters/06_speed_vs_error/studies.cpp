@@ -32,6 +32,9 @@ cloth::SceneParams with(const SceneParams& base, double K, double D) {
   return p;
 }
 
+
+}  // namespace
+
 double max_particle_distance(const Vector& a, const Vector& b) {
   double worst = 0;
   for (Eigen::Index k = 0; k + 2 < a.size(); k += 3) worst = std::max(worst, (a.segment<3>(k) - b.segment<3>(k)).norm());
@@ -44,7 +47,18 @@ std::FILE* open(const Sink& sink, const std::string& name, const char* header) {
   return f;
 }
 
-}  // namespace
+ShortestSpring shortest_spring(const Scene& scene, const Vector& x, Vector& all) {
+  scene.all_positions(x, all);
+  ShortestSpring out;
+  const auto& springs = scene.springs().springs;
+  for (int s = 0; s < static_cast<int>(springs.size()); ++s) {
+    const Spring& sp = springs[static_cast<std::size_t>(s)];
+    const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q);
+    const double l = (all.segment<3>(3 * p) - all.segment<3>(3 * q)).norm() / sp.rest_length;
+    if (l < out.length_over_rest) out.length_over_rest = l, out.spring = s;
+  }
+  return out;
+}
 
 const std::vector<std::string>& sweep_methods() {
   static const std::vector<std::string> names = {
@@ -112,15 +126,7 @@ void near_zero_springs(const SceneParams& base, double T, double h, const Sink& 
   const auto& springs = scene.springs();
   for (long long k = 0; k <= steps; ++k) {
     if (k > 0) rk4.step(h, x, v);
-    scene.all_positions(x, all);
-    double worst = 1e300;
-    int which = 0;
-    for (int s = 0; s < springs.size(); ++s) {
-      const Spring& sp = springs.springs[static_cast<std::size_t>(s)];
-      const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q);
-      const double l = (all.segment<3>(3 * p) - all.segment<3>(3 * q)).norm() / sp.rest_length;
-      if (l < worst) worst = l, which = s;
-    }
+    const auto [worst, which] = shortest_spring(scene, x, all);
     const Spring& sp = springs.springs[static_cast<std::size_t>(which)];
     int family = 0;
     for (SpringFamily fam : all_spring_families)

@@ -41,6 +41,18 @@ struct Sink {
   std::FILE* table = nullptr;  ///< speed_vs_error.dat
 };
 
+double max_particle_distance(const cloth::Vector& a, const cloth::Vector& b);
+/// Opens DIR/name for writing and writes its header line.
+std::FILE* open(const Sink& sink, const std::string& name, const char* header);
+
+/// The spring with the smallest length relative to its rest length at positions x (`all` is scratch space for
+/// every particle's position, pinned ones included).
+struct ShortestSpring {
+  double length_over_rest = 1e300;
+  int spring = -1;
+};
+ShortestSpring shortest_spring(const cloth::Scene& scene, const cloth::Vector& x, cloth::Vector& all);
+
 void near_zero_springs(const cloth::SceneParams& base, double T, double h, const Sink& sink);
 void sensitivity(const cloth::SceneParams& base, const std::vector<Config>& configs, double h, const Sink& sink);
 /// Returns the reference trajectory at the samples; prints and records its credentials.
@@ -49,6 +61,12 @@ Trajectory reference(const cloth::SceneParams& base, const Config& c, int sample
 void work_precision(const cloth::SceneParams& base, const Config& c, const Trajectory& ref, int samples,
                     int k_min, int k_max, double max_seconds, int runs, double ref_agreement,
                     const Sink& sink);
+/// Where the order of the methods goes when springs pass near zero length: RK4's local error per step along the
+/// (K, D) = (50, 0) trajectory beside the shortest spring, and observed orders from successive step halvings
+/// over a short and a long horizon (order_loss.cpp).
+void local_error_along_trajectory(const cloth::SceneParams& base, double T, double h, const Sink& sink);
+void observed_orders(const cloth::SceneParams& base, const std::vector<double>& horizons, int k_min, int k_max,
+                     const Sink& sink);
 /// A method stops growing the grid once a step costs more than `max_step_seconds`.
 void scaling(const cloth::SceneParams& base, const std::vector<int>& sizes, int runs, double max_step_seconds,
              const Sink& sink);

@@ -1,0 +1,103 @@
+// Chapter 6: what springs passing near zero length do to the methods' orders. The local error of RK4 step by step
+// beside the shortest spring tells where the error is made; successive step halvings tell the observed order
+// over a short horizon (before the fold) and a long one (through it), with no reference solution needed.
+#include "studies.hpp"
+
+#include "integrators/explicit_runge_kutta.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace ch06 {
+
+using namespace cloth;
+
+// [local_error]
+// Along one RK4 run with step h, from every state: one step of h and two steps of h/2. Their difference times
+// 16/15 estimates the local error of the h-step (Richardson: a fourth-order step's error scales as h^5, so
+// e(h) - e(h/2) pairs ~ (1 - 2/32) e(h)). Where the right-hand side is smooth it is ~ C h^5. The model it is
+// compared with: a structural spring passing through zero length reverses its force K (L0 - l) u ~ K L0 u, a
+// jump of J = 2 K L0 / m in a particle's acceleration inside one step. A step that does not resolve the instant
+// of the jump misweights it whatever its order: across a jump, one RK4 step against two half steps differ by up
+// to J h / 4 in velocity and J h^2 / 6 in position (times 16/15 here), at the worst instant of the jump.
+void local_error_along_trajectory(const SceneParams& base, double T, double h, const Sink& sink) {
+  const Scene scene(base);
+  ForceField field(scene);
+  ExplicitRungeKutta rk4(field, builtin_tableaus()[4]);
+  Vector x = scene.initial_positions(), v = scene.initial_velocities();
+  Vector x_full(x.size()), v_full(x.size()), x_half(x.size()), v_half(x.size());
+  Vector all(3 * scene.particle_count());
+  const std::string name = "local_error_h" + std::to_string(std::lround(1e6 * h)) + "us.dat";
+  std::FILE* f = open(sink, name,
+                      "# t local_position_error_m local_velocity_error_m_per_s shortest_spring_l_over_L0  (rk4)");
+  const double jump = 2 * scene.stiffness(SpringFamily::structural) * base.grid.d / base.mass;
+  const auto steps = static_cast<long long>(std::llround(T / h));
+  double worst = 0, t_worst = 0, worst_velocity = 0;
+  long long jump_steps = 0;
+  for (long long k = 0; k < steps; ++k) {
+    x_full = x, v_full = v;
+    rk4.step(h, x_full, v_full);
+    x_half = x, v_half = v;
+    rk4.step(0.5 * h, x_half, v_half);
+    rk4.step(0.5 * h, x_half, v_half);
+    const double local = 16.0 / 15.0 * max_particle_distance(x_full, x_half);
+    const double local_velocity = 16.0 / 15.0 * max_particle_distance(v_full, v_half);
+    const double t = static_cast<double>(k) * h;
+    std::fprintf(f, "%.6f %.6e %.6e %.6e\n", t, local, local_velocity,
+                 shortest_spring(scene, x, all).length_over_rest);
+    if (local > worst) worst = local, t_worst = t;
+    worst_velocity = std::max(worst_velocity, local_velocity);
+    if (local_velocity > 0.01 * jump * h) ++jump_steps;  // an error of the jump's size, not of a smooth step's
+    x = x_half, v = v_half;  // continue on the more accurate branch
+  }
+  std::fclose(f);
+  std::printf("local error of rk4 (K %g, D %g, h %g): largest %.3e m at t = %.4f s (model J h^2/6 = %.3e), velocity "
+              "%.3e m/s (model J h/4 = %.3e), J = %g m/s^2, models times 16/15 at worst; %lld of %lld steps with velocity error > 0.01 J h\n",
+              base.stiffness, base.damping, h, worst, t_worst, jump * h * h / 6, worst_velocity, jump * h / 4, jump,
+              jump_steps, steps);
+  std::fprintf(sink.table, "local_error K%g_D%g rk4 %.6g %lld - %.6e %.6e - - - - - ok\n", base.stiffness,
+               base.damping, h, steps, worst, worst_velocity);
+}
+// [local_error]
+
+// [observed_orders]
+// Observed order without a reference: with d_k = max over particles |x_{h_k}(T) - x_{h_k / 2}(T)| and
+// h_k = T / 2^k, d_k ~ C h_k^p, so p ~ log2(d_k / d_{k+1}) wherever the error is in its asymptotic regime.
+void observed_orders(const SceneParams& base, const std::vector<double>& horizons, int k_min, int k_max,
+                     const Sink& sink) {
+  const Scene scene(base);
+  std::FILE* f = open(sink, "orders.dat",
+                      "# method T h difference_to_half_step observed_order  (blocks by method and T)");
+  for (const char* method : {"explicit_euler", "symplectic_euler", "heun", "rk4"}) {
+    for (const double T : horizons) {
+      std::fprintf(f, "# %s T = %g\n", method, T);
+      ForceField field(scene);
+      auto stepper = make_method(method, field);
+      Vector previous;
+      double previous_difference = 0;
+      for (int k = k_min; k <= k_max + 1; ++k) {
+        const Trajectory run = run_sampled(*stepper, T, 1LL << k, 1);
+        if (!run.ok) {  // diverged: no difference to take, and the next one has no predecessor
+          previous.resize(0);
+          previous_difference = 0;
+          continue;
+        }
+        if (previous.size() > 0) {
+          const double h = T / static_cast<double>(1LL << (k - 1));
+          const double difference = max_particle_distance(previous, run.x.back());
+          const double order = previous_difference > 0 ? std::log2(previous_difference / difference) : NAN;
+          std::fprintf(f, "%s %g %.6e %.6e %.3f\n", method, T, h, difference, order);
+          std::fprintf(sink.table, "observed_order K%g_D%g %s %.6g %lld - %.6e %.3f - - - - - ok\n",
+                       base.stiffness, base.damping, method, h, 1LL << (k - 1), difference, order);
+          previous_difference = difference;
+        }
+        previous = run.x.back();
+      }
+      std::fprintf(f, "\n\n");
+    }
+  }
+  std::fclose(f);
+}
+// [observed_orders]
+
+}  // namespace ch06
