@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
         {"K50_D0", 50, 0, 0.25}, {"K200_D20", 200, 20, 0.25}, {"K5000_D20", 5000, 20, 0.25}};
     // [configs]
     ch06::near_zero_springs(opt.scene, 1.0, quick ? 5e-4 : 5e-5, sink);
-    for (const double h : {1e-3, 5e-4}) ch06::local_error_along_trajectory(opt.scene, 1.0, h, sink);
+    for (const double h : {2e-3, 1e-3, 5e-4, 2.5e-4}) ch06::local_error_along_trajectory(opt.scene, 1.0, h, sink);
     ch06::observed_orders(opt.scene, {0.25, 1.0}, 6, quick ? 11 : 15, sink);
     ch06::sensitivity(opt.scene, configs, quick ? 5e-4 : 5e-5, sink);
 
