@@ -6,6 +6,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace cloth {
 
@@ -37,10 +38,7 @@ std::vector<double> stiffness_eigenvalues(ForceField& field, const Vector& x) {
   return {values.data(), values.data() + values.size()};
 }
 
-std::array<std::complex<double>, 2> mode_eigenvalues(double omega2, double c) {
-  const std::complex<double> root = std::sqrt(std::complex<double>(c * c - 4 * omega2, 0.0));
-  return {0.5 * (-c + root), 0.5 * (-c - root)};
-}
+std::array<std::complex<double>, 2> mode_eigenvalues(double omega2, double c) { return quadratic_roots(c, omega2); }
 
 std::vector<std::complex<double>> proportional_spectrum(const std::vector<double>& omega2, double beta) {
   std::vector<std::complex<double>> lambda;
@@ -65,42 +63,9 @@ PowerIterationResult largest_eigenvalue_magnitude(ForceField& field, const Vecto
     out.tail(n) = inv_m * (dfdx * y.head(n) + dfdv * y.tail(n));
   };
   // A fixed, non-special start: every mode present with comparable weight.
-  Vector y0(2 * n), y1(2 * n), y2(2 * n);
+  Vector y0(2 * n);
   for (int k = 0; k < 2 * n; ++k) y0[k] = std::sin(1.0 + 0.7 * k) + 0.3 * std::cos(0.13 * k * k);
-  y0.normalize();
-  PowerIterationResult result;
-  double previous = 0;
-  for (int it = 1; it <= max_iterations; ++it) {
-    apply(y0, y1);
-    apply(y1, y2);
-    // Least squares for (p, q) in y2 + p y1 + q y0 = 0: the 2 x 2 normal equations.
-    const double a11 = y1.dot(y1), a12 = y1.dot(y0), a22 = y0.dot(y0);
-    const double r1 = -y2.dot(y1), r2 = -y2.dot(y0);
-    const double det = a11 * a22 - a12 * a12;
-    double estimate = 0;
-    if (std::abs(det) > 1e-14 * a11 * a22) {
-      const double p = (r1 * a22 - r2 * a12) / det;
-      const double q = (a11 * r2 - a12 * r1) / det;
-      const auto roots = mode_eigenvalues(q, p);  // mu^2 + p mu + q = 0
-      const auto top = std::abs(roots[0]) >= std::abs(roots[1]) ? roots[0] : roots[1];
-      result.dominant = {top.real(), std::abs(top.imag())};
-      estimate = std::abs(top);
-    } else {
-      estimate = std::sqrt(a11);  // y1 is parallel to y0: a real dominant eigenvalue, |J y0| = |lambda|
-      result.dominant = y1.dot(y0) >= 0 ? estimate : -estimate;
-    }
-    result.magnitude = estimate;
-    result.iterations = it;
-    if (it % 10 == 0) {
-      if (std::abs(estimate - previous) <= tolerance * estimate) {
-        result.converged = true;
-        break;
-      }
-      previous = estimate;
-    }
-    y0 = y2 / y2.norm();
-  }
-  return result;
+  return dominant_eigenvalue(apply, std::move(y0), {tolerance, 10, max_iterations});
 }
 
 Equilibrium static_equilibrium(ForceField& field, double tolerance, int max_iterations) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "cloth/force_field.hpp"
+#include "cloth/power_iteration.hpp"
 
 #include <array>
 #include <complex>
@@ -30,17 +31,10 @@ std::array<std::complex<double>, 2> mode_eigenvalues(double omega2, double c);
 /// with c = beta omega^2. Exact then, and cheap: one symmetric eigenproblem serves every (K, D).
 std::vector<std::complex<double>> proportional_spectrum(const std::vector<double>& omega2, double beta);
 
-/// Largest |lambda| of J at (x, v) without forming J: power iteration on sparse products with df/dx and df/dv.
-/// The dominant eigenvalues of a real J are often a conjugate pair, which a plain power iteration cannot
-/// isolate, so each iteration fits y2 + p y1 + q y0 = 0 to three successive iterates by least squares and takes
-/// the larger root of mu^2 + p mu + q (Wilkinson 1965, ch. 9). Stops when the estimate changes by less than
-/// `tolerance` relatively over 10 iterations.
-struct PowerIterationResult {
-  double magnitude = 0;
-  std::complex<double> dominant;  ///< the root of larger magnitude (Im >= 0 of a conjugate pair)
-  int iterations = 0;
-  bool converged = false;
-};
+/// Largest |lambda| of J at (x, v) without forming J: power iteration (cloth/power_iteration.hpp) on sparse
+/// products with df/dx and df/dv. The dominant eigenvalues of a real J are often a conjugate pair, which the
+/// iteration's two-term fit resolves. Stops when the estimate changes by less than `tolerance` relatively over
+/// 10 iterations.
 PowerIterationResult largest_eigenvalue_magnitude(ForceField& field, const Vector& x, const Vector& v,
                                                   double tolerance = 1e-6, int max_iterations = 5000);
 
