@@ -11,7 +11,11 @@
 namespace cloth {
 
 void BlockLDU::analyze(const SparseMatrix& A, Symmetry symmetry) {
+  eigen_assert(A.isCompressed() && A.rows() == A.cols() && A.cols() % 3 == 0);
   symmetry_ = symmetry;
+  factored_ = false;
+  rows_ = A.rows();
+  nonzeros_ = A.nonZeros();
   n_ = static_cast<int>(A.cols() / 3);
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
@@ -89,7 +93,7 @@ void BlockLDU::analyze(const SparseMatrix& A, Symmetry symmetry) {
       if (t < k) return;
       gather_target_.push_back(t);
       gather_lower_.push_back(block_start(r, c));
-      gather_upper_.push_back(block_start(c, r));
+      if (symmetry == Symmetry::general) gather_upper_.push_back(block_start(c, r));
     });
     gather_start_.push_back(static_cast<int>(gather_target_.size()));
   }
@@ -102,23 +106,28 @@ void BlockLDU::analyze(const SparseMatrix& A, Symmetry symmetry) {
   column_.assign(n_, PaddedBlock::Zero());
   row_.assign(symmetry == Symmetry::general ? n_ : 0, PaddedBlock::Zero());
   y_.assign(n_, Eigen::Vector3d::Zero());
+  b_.resize(rows_), r_.resize(rows_), dx_.resize(rows_);
 }
 
 double BlockLDU::factorization_flops() const {
-  // Per row entry L(k, j): one 3x3 product for the multiplier, then one per block of column j from row k down;
-  // per column, one product per block to scale it by D_k^{-1}. Twice that for L and U separately.
+  // Per row entry L(k, j) reaching m blocks of column j from row k down: one 3x3 product for the multiplier and
+  // m updates (general: two multipliers, m updates of the column and m - 1 of the row); per block of L, one
+  // product to scale it by D_k^{-1} (general: two).
+  const bool general = symmetry_ == Symmetry::general;
   double products = 0;
   for (int k = 0; k < n_; ++k)
     for (int r = row_start_[k]; r < row_start_[k + 1]; ++r) {
-      const int j = column_of_row_entry_[r];
-      products += 1 + column_start_[j + 1] - entry_of_row_entry_[r];
+      const int m = column_start_[column_of_row_entry_[r] + 1] - entry_of_row_entry_[r];
+      products += general ? 2 * m + 1 : m + 1;
     }
-  products += static_cast<double>(row_of_entry_.size());
-  return 27 * products * (symmetry_ == Symmetry::general ? 2 : 1);
+  products += static_cast<double>(row_of_entry_.size()) * (general ? 2 : 1);
+  return 27 * products;
 }
 
 // [block_ldu_factorize]
 bool BlockLDU::factorize(const SparseMatrix& A) {
+  eigen_assert(A.rows() == rows_ && A.nonZeros() == nonzeros_ && A.isCompressed());
+  factored_ = false;
   const double* a = A.valuePtr();
   const bool general = symmetry_ == Symmetry::general;
   for (int k = 0; k < n_; ++k) {
@@ -154,11 +163,10 @@ bool BlockLDU::factorize(const SparseMatrix& A) {
     column_[k].setZero();
     const double det = D_[k].determinant();
     const double bound = D_[k].col(0).norm() * D_[k].col(1).norm() * D_[k].col(2).norm();
-    if (!std::isfinite(det) || !(std::abs(det) > 64 * std::numeric_limits<double>::epsilon() * bound)) {
-      for (PaddedBlock& w : column_) w.setZero();
-      for (PaddedBlock& w : row_) w.setZero();
-      return false;
-    }
+    // Stale work blocks a failure leaves behind need no cleaning: a row's first block in L (its smallest
+    // column) is always an entry of A (Liu 1986), so the next factorization assigns each work block before it
+    // updates it.
+    if (!std::isfinite(det) || !(std::abs(det) > 64 * std::numeric_limits<double>::epsilon() * bound)) return false;
     D_inverse_[k] = D_[k].inverse();
     // Column k of L is the work column times D_k^{-1}; row k of U is D_k^{-1} times the work row.
     for (int e = column_start_[k]; e < column_start_[k + 1]; ++e) {
@@ -171,11 +179,18 @@ bool BlockLDU::factorize(const SparseMatrix& A) {
       }
     }
   }
+  // |A|_inf, the scale of the solve's backward error: the largest absolute row sum (rows are columns here, the
+  // pattern being symmetric, but the values are summed by row so that a non-symmetric A is measured right).
+  r_.setZero();
+  const int* rows = A.innerIndexPtr();
+  for (Eigen::Index e = 0; e < A.nonZeros(); ++e) r_[rows[e]] += std::abs(a[e]);
+  norm_A_ = r_.maxCoeff();
+  factored_ = true;
   return true;
 }
 // [block_ldu_factorize]
 
-void BlockLDU::solve(const Vector& b, Vector& x) {
+void BlockLDU::substitute(const Vector& b, Vector& x) {
   const std::vector<PaddedBlock>& U_transposed = symmetry_ == Symmetry::general ? Ut_ : L_;
   for (int k = 0; k < n_; ++k) y_[k] = b.segment<3>(3 * order_[k]);
   for (int k = 0; k < n_; ++k)  // L y = P b
@@ -187,5 +202,34 @@ void BlockLDU::solve(const Vector& b, Vector& x) {
       y_[k] -= U_transposed[e].topRows<3>().transpose() * y_[row_of_entry_[e]];
   for (int k = 0; k < n_; ++k) x.segment<3>(3 * order_[k]) = y_[k];
 }
+
+// [block_ldu_refine]
+double BlockLDU::solve(const SparseMatrix& A, const Vector& b, Vector& x, double target, int max_refinements) {
+  eigen_assert(factored_ && b.size() == rows_ && x.size() == rows_);
+  b_ = b;  // b may be x
+  substitute(b_, x);
+  const double norm_b = b_.lpNorm<Eigen::Infinity>();
+  double backward_error = INFINITY;
+  for (int step = 0;; ++step) {
+    r_ = b_;
+    r_.noalias() -= A * x;
+    const double previous = backward_error;
+    const double scale = norm_A_ * x.lpNorm<Eigen::Infinity>() + norm_b;
+    backward_error = scale > 0 ? r_.lpNorm<Eigen::Infinity>() / scale : 0.0;  // b = 0: x = 0 is exact
+    // Refinement in working precision converges when the factorization is good to at least one digit, each
+    // step contracting the error by that factor; once it stops halving, the rounding in b - A x is all that is
+    // left, and further steps would only cost time.
+    if (backward_error > previous) {  // the last correction made things worse: take it back
+      x -= dx_;
+      backward_error = previous;
+      break;
+    }
+    if (!(backward_error > target) || step == max_refinements || !(backward_error < 0.5 * previous)) break;
+    substitute(r_, dx_);
+    x += dx_;
+  }
+  return backward_error;
+}
+// [block_ldu_refine]
 
 }  // namespace cloth

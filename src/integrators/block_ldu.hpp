@@ -13,13 +13,16 @@ namespace cloth {
 
 /// A = P^T L D U P on 3x3 blocks: L unit lower and U unit upper block-triangular, D block diagonal, P a
 /// fill-reducing ordering of the particles (approximate minimum degree on the particle graph; Amestoy, Davis &
-/// Duff 1996). Symmetric mode has U = L^T and does half the work. Pivoting happens only inside a 3x3 diagonal
-/// block (each D_k is inverted whole), which is enough for the matrices implicit Euler makes: they are M plus
-/// O(h) terms, dominated by their diagonal blocks unless h is very large; a D_k that is singular to working
-/// precision is reported as a failed factorization rather than pivoted around.
+/// Duff 1996). Symmetric mode has U = L^T and does half the work. There is no pivoting: each pivot block D_k is
+/// inverted whole (by cofactors), in the order the fill-reducing ordering chose. For a symmetric positive
+/// definite A (the `definite` treatment) that is as stable as Cholesky. For an indefinite or non-symmetric A
+/// (compressed springs, the damper's d/dx) nothing bounds the growth of the factors, and a solve can lose digits
+/// even when A is well conditioned; solve() therefore checks its backward error and refines the solution
+/// (Wilkinson 1963; Higham, Accuracy and Stability of Numerical Algorithms, 2002, ch. 12), and reports how far
+/// it got. A pivot block that is singular to working precision makes factorize() fail.
 ///
-/// The matrix comes in ForceField's storage: column-major, both triangles, every block full and its three rows
-/// consecutive. analyze() looks at the pattern once per scene; factorize() and solve() allocate nothing.
+/// The matrix comes in ForceField's storage: column-major, compressed, both triangles, every block full and its
+/// three rows consecutive. analyze() looks at the pattern once per scene; factorize() and solve() allocate nothing.
 class BlockLDU {
  public:
   enum class Symmetry { symmetric, general };
@@ -27,12 +30,15 @@ class BlockLDU {
   /// The ordering and the symbolic factorization (the pattern of L), for matrices with A's pattern.
   void analyze(const SparseMatrix& A, Symmetry symmetry);
 
-  /// The numeric factorization of A (same pattern as in analyze()). Returns false, and keeps no usable factor,
-  /// when a pivot block D_k is singular to working precision or not finite.
+  /// The numeric factorization of A (same pattern as in analyze()). Returns false when a pivot block D_k is
+  /// singular to working precision or not finite; solve() then refuses until a factorization succeeds.
   bool factorize(const SparseMatrix& A);
 
-  /// x = A^{-1} b with the last successful factorization (x and b may not alias).
-  void solve(const Vector& b, Vector& x);
+  /// x = A^{-1} b by the factorization of A, then up to `max_refinements` steps of iterative refinement,
+  /// x += (LDU)^{-1} (b - A x), while the normwise backward error |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)
+  /// is above `target` and still falling. Returns that backward error: the caller decides what is good enough.
+  /// A must be the matrix last factorized; b may be x.
+  double solve(const SparseMatrix& A, const Vector& b, Vector& x, double target = 1e-14, int max_refinements = 3);
 
   /// Number of 3x3 blocks stored in L strictly below the diagonal (the fill the ordering leaves).
   [[nodiscard]] long factor_blocks() const { return static_cast<long>(row_of_entry_.size()); }
@@ -61,6 +67,13 @@ class BlockLDU {
   std::vector<Block> D_, D_inverse_;       // the pivot blocks D_k and their inverses
   std::vector<PaddedBlock> column_, row_;  // dense work column of L and row of U (as transposes), one per row
   std::vector<Eigen::Vector3d> y_;    // the solve's permuted work vector
+  Vector b_, r_, dx_;                 // right-hand side, residual and correction of the refinement
+  double norm_A_ = 0;                 // |A|_inf of the matrix last factorized, for the backward error
+  bool factored_ = false;
+  Eigen::Index rows_ = 0, nonzeros_ = 0;  // the pattern analyze() saw, to catch a matrix of another one
+
+  // x = (P^T L D U P)^{-1} b: the two triangular solves and the block-diagonal one.
+  void substitute(const Vector& b, Vector& x);
 };
 
 }  // namespace cloth

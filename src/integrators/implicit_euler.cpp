@@ -66,6 +66,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
   using clock = std::chrono::steady_clock;
+  linear_failure_.clear();
   auto t0 = clock::now();
   switch (settings_.solver) {
     case LinearSolverKind::ldlt:
@@ -73,9 +74,22 @@ bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
       const bool factored = block_.factorize(A_);
       ++counters_.factorizations;
       timing_.factorization += seconds_since(t0);
-      if (!factored) return false;
+      if (!factored) {
+        linear_failure_ = "a pivot block is singular";
+        return false;
+      }
       t0 = clock::now();
-      block_.solve(rhs, dv);
+      // Refined until the update is as accurate as the matrix allows; an update Newton cannot trust (the
+      // factorization of an indefinite or non-symmetric J grew too much for refinement to recover) fails the
+      // step rather than steering Newton with it.
+      const double backward_error = block_.solve(A_, rhs, dv);
+      if (!(backward_error <= max_backward_error)) {
+        char buf[120];
+        std::snprintf(buf, sizeof buf, "backward error %.2g after refinement (the pivoting lu solver may do better)",
+                      backward_error);
+        linear_failure_ = buf;
+        return false;
+      }
       break;
     }
     case LinearSolverKind::lu:
@@ -144,8 +158,9 @@ bool ImplicitEuler::step(double h, Vector& x, Vector& v) {
     timing_.assembly += std::chrono::duration<double>(clock::now() - t0).count();
     if (!solve(r_, dv_, k == 0)) {
       char buf[200];
-      std::snprintf(buf, sizeof buf, "linear solve (%s) failed in Newton iteration %d, |r|_inf = %.3g",
-                    linear_solver_name(settings_.solver), k + 1, residual);
+      std::snprintf(buf, sizeof buf, "linear solve (%s) failed in Newton iteration %d, |r|_inf = %.3g%s%s",
+                    linear_solver_name(settings_.solver), k + 1, residual, linear_failure_.empty() ? "" : ": ",
+                    linear_failure_.c_str());
       failure_.reason = buf;
       counters_.newton_iterations += k + 1;
       return false;

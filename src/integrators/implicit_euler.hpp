@@ -69,7 +69,12 @@ class ImplicitEuler final : public Stepper {
   // Sets x1_ = x0 + h v1_, f_ and r_ = -r(v1_), and returns |r|_inf.
   double residual_at(const Vector& x, const Vector& v, double h);
 
+  /// The block factorizations' updates are accepted up to this normwise backward error, a thousandth of
+  /// Newton's default tolerance: an inexact update then never decides whether Newton converges.
+  static constexpr double max_backward_error = 1e-11;
+
   NewtonSettings settings_;
+  std::string linear_failure_;  // why the last linear solve failed, for the step's failure reason
   SparseMatrix A_;
   BlockLDU block_;
   BlockJacobiPCG cg_;
