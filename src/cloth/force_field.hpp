@@ -79,10 +79,14 @@ class ForceField {
   // scatter_state() to have run and the mass diagonal to be in `values`.
   void refill_symmetric(double h, bool definite, double* values);
 
+  // One column (x, y, z, 0) per slot: a particle is one 4-double vector, so a spring reads and writes its two
+  // particles with whole-vector loads and stores instead of three scalars each (see force_field.cpp).
+  using SlotMatrix = Eigen::Matrix<double, 4, Eigen::Dynamic>;
+
   const Scene& scene_;
-  Vector X_;  // all slots' positions: x in the head, the pinned rest positions in the tail
-  Vector V_;  // all slots' velocities: v in the head, zeros in the tail
-  Vector F_;  // all slots' forces; the tail (forces on pinned particles) is computed and ignored
+  SlotMatrix X_;  // all slots' positions: x in the free columns, the pinned rest positions in the tail
+  SlotMatrix V_;  // all slots' velocities: v in the free columns, zeros in the tail
+  SlotMatrix F_;  // all slots' forces; the tail (forces on pinned particles) is computed and ignored
   SparseMatrix pattern_;
   std::vector<SpringBlocks> spring_blocks_;
   std::vector<int> diagonal_entry_;  // value index of entry (k, k), for the mass term
