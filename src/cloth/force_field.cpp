@@ -41,16 +41,14 @@ void add_spring_batch(const Spring* s, double K, double D, const double* X, cons
       wd[k] = w[k].dot(d[k]);
     }
   }
+  // A coincident pair makes c infinite or NaN here; the guard below discards it.
   const Batch l = l2.sqrt();
   Batch c = K * (L0 / l - 1.0);  // K (L0 - l) / l: the spring force is c d
   if constexpr (law == DampingLaw::projected) c -= D * wd / l2;
-  // Below the guard a spring has no direction: no force (Chapter 7). Selected rather than branched on, so a
-  // coincident pair's infinite quotient above is computed and discarded.
-  const Eigen::Array<bool, lanes, 1> live = l > degenerate_length_fraction * L0;
-  c = live.select(c, 0.0);
   Batch Dl;
-  if constexpr (law == DampingLaw::report) Dl = live.select(D * l, 0.0);
+  if constexpr (law == DampingLaw::report) Dl = D * l;
   for (int k = 0; k < lanes; ++k) {
+    if (l[k] <= degenerate_length_fraction * L0[k]) continue;  // no direction: no force (Chapter 7)
     Eigen::Vector4d f = c[k] * d[k];
     if constexpr (law == DampingLaw::report) f -= Dl[k] * w[k];
     Slot(F + p[k]) += f;
