@@ -10,6 +10,7 @@ ExplicitRungeKutta::ExplicitRungeKutta(ForceField& field, ButcherTableau tableau
   const int n = field.dof_count();
   const auto s = static_cast<std::size_t>(tableau_.stages());
   stage_v_.assign(s, Vector(n));
+  V_.assign(s, nullptr);
   stage_a_.assign(s, Vector(n));
   stage_x_.resize(n);
   sum_v_.resize(n);
@@ -22,17 +23,27 @@ bool ExplicitRungeKutta::step(double h, Vector& x, Vector& v) {
   const int s = tableau_.stages();
   // [rk_stage_loop]
   for (int i = 0; i < s; ++i) {
-    // X_i = x + h sum_{j<i} a_ij V_j,  V_i = v + h sum_{j<i} a_ij a_j   (zero a_ij cost nothing)
+    // X_i = x + h sum_{j<i} a_ij V_j,  V_i = v + h sum_{j<i} a_ij a_j. Zero a_ij cost nothing; the first nonzero
+    // one is added as the stage vectors are formed (one pass, not a copy and then a pass), and a stage with none
+    // (the first, always) evaluates at (x, v) itself, with no copy at all.
     Vector& Vi = stage_v_[static_cast<std::size_t>(i)];
-    stage_x_ = x;
-    Vi = v;
+    bool formed = false;
     for (int j = 0; j < i; ++j) {
       if (A(i, j) == 0.0) continue;
       const double ha = h * A(i, j);
-      stage_x_.noalias() += ha * stage_v_[static_cast<std::size_t>(j)];
-      Vi.noalias() += ha * stage_a_[static_cast<std::size_t>(j)];
+      const Vector& Vj = *V_[static_cast<std::size_t>(j)];
+      const Vector& aj = stage_a_[static_cast<std::size_t>(j)];
+      if (!formed) {
+        stage_x_.noalias() = x + ha * Vj;
+        Vi.noalias() = v + ha * aj;
+        formed = true;
+      } else {
+        stage_x_.noalias() += ha * Vj;
+        Vi.noalias() += ha * aj;
+      }
     }
-    field_.acceleration(stage_x_, Vi, stage_a_[static_cast<std::size_t>(i)]);
+    V_[static_cast<std::size_t>(i)] = formed ? &Vi : &v;
+    field_.acceleration(formed ? stage_x_ : x, formed ? Vi : v, stage_a_[static_cast<std::size_t>(i)]);
   }
   // x1 = x + h sum_i b_i V_i,  v1 = v + h sum_i b_i a_i
   // The sums start from their first term rather than from zero, so the one-stage tableau "euler" reproduces
@@ -40,7 +51,7 @@ bool ExplicitRungeKutta::step(double h, Vector& x, Vector& v) {
   bool first = true;
   for (int i = 0; i < s; ++i) {
     if (b[i] == 0.0) continue;
-    const Vector& Vi = stage_v_[static_cast<std::size_t>(i)];
+    const Vector& Vi = *V_[static_cast<std::size_t>(i)];
     const Vector& ai = stage_a_[static_cast<std::size_t>(i)];
     if (first) {
       sum_v_.noalias() = b[i] * Vi;

@@ -21,7 +21,8 @@ class ExplicitRungeKutta final : public Stepper {
 
  private:
   ButcherTableau tableau_;
-  std::vector<Vector> stage_v_;  // V_i
+  std::vector<Vector> stage_v_;  // V_i, for the stages that have one of their own
+  std::vector<const Vector*> V_;  // V_i itself: &stage_v_[i], or &v when row i of A is zero (then V_i = v)
   std::vector<Vector> stage_a_;  // a_i = M^{-1} f(X_i, V_i)
   Vector stage_x_;               // X_i, needed only while a_i is evaluated
   Vector sum_v_, sum_a_;         // sum_i b_i V_i and sum_i b_i a_i
