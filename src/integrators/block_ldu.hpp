@@ -38,7 +38,7 @@ class BlockLDU {
   /// x += (LDU)^{-1} (b - A x), while the normwise backward error |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)
   /// is above `target` and still falling. Returns that backward error: the caller decides what is good enough.
   /// A must be the matrix last factorized; b may be x.
-  double solve(const SparseMatrix& A, const Vector& b, Vector& x, double target = 1e-14, int max_refinements = 3);
+  double solve(const SparseMatrix& A, const Vector& b, Vector& x, double target = 1e-14, int max_refinements = 6);
 
   /// Number of 3x3 blocks stored in L strictly below the diagonal (the fill the ordering leaves).
   [[nodiscard]] long factor_blocks() const { return static_cast<long>(row_of_entry_.size()); }
