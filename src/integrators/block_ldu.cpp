@@ -136,12 +136,12 @@ bool BlockLDU::factorize(const SparseMatrix& A) {
     for (int g = gather_start_[k]; g < gather_start_[k + 1]; ++g) {
       const auto t = gather_target_[g];
       const auto& lower = gather_lower_[g];
+      for (int b = 0; b < 3; ++b)
+        for (int i = 0; i < 3; ++i) column_[t](i, b) = a[lower[b] + i];
+      if (!general) continue;  // the transposes are gathered (and their places recorded) in general mode only
       const auto& upper = gather_upper_[g];
       for (int b = 0; b < 3; ++b)
-        for (int i = 0; i < 3; ++i) {
-          column_[t](i, b) = a[lower[b] + i];
-          if (general) row_[t](b, i) = a[upper[b] + i];
-        }
+        for (int i = 0; i < 3; ++i) row_[t](b, i) = a[upper[b] + i];
     }
     // Left-looking: subtract L(i, j) D_j U(j, k) for every earlier column j that reaches row k; column j's
     // blocks from row k down are contiguous, so each update is a run of 3x3 products.
