@@ -24,6 +24,7 @@ enum class DampingLaw { none, projected, report };
 // (Eigen's Array packets) and the processor overlaps the springs' independent work.
 // [spring_force_loop]
 template <DampingLaw law, int lanes>
+// NOLINTNEXTLINE(readability-non-const-parameter): F is written, through the Eigen::Map views below
 void add_spring_batch(const Spring* s, double K, double D, const double* X, const double* V, double* F) {
   using Slot = Eigen::Map<Eigen::Vector4d, Eigen::Aligned16>;
   using ConstSlot = Eigen::Map<const Eigen::Vector4d, Eigen::Aligned16>;
