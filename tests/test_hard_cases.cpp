@@ -151,13 +151,8 @@ TEST_CASE("a 100 x 100 cloth with implicit Euler at h = 0.01: both linear solver
     if (solver == LinearSolverKind::cg) newton.treatment = StiffnessTreatment::definite;
     auto stepper = make_stepper("implicit_euler", field, newton);
     Vector x = scene.initial_positions(), v = scene.initial_velocities();
-    double E = E0;
-    for (int k = 0; k < 1; ++k) {  // one step: a 30000-unknown Newton solve per iteration
-      REQUIRE(stepper->step(0.01, x, v));
-      const double next = field.energy(x, v).total();
-      CHECK(next <= E + 1e-9 * E0);
-      E = next;
-    }
+    REQUIRE(stepper->step(0.01, x, v));  // one step: a 30000-unknown Newton solve per iteration
+    CHECK(field.energy(x, v).total() <= E0 + 1e-9 * E0);
     CHECK(x.allFinite());
     CHECK(v.allFinite());
   }
