@@ -89,6 +89,7 @@ set terminal pngcairo size 900,620 enhanced font 'Sans,11'
 set key outside right top
 
 set output plots.'/ch06_scaling.png'
+set key inside top left box opaque
 set logscale xy
 set format y '10^{%L}'
 set xlabel 'springs'
