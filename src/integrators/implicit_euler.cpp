@@ -1,6 +1,7 @@
 // Newton's method for the implicit Euler step, with the linear solver chosen for the matrix it gets.
 #include "integrators/implicit_euler.hpp"
 
+#include "cloth/format_number.hpp"
 #include "cloth/input_error.hpp"
 
 #include <chrono>
@@ -84,10 +85,8 @@ bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
       // step rather than steering Newton with it.
       const double backward_error = block_.solve(A_, rhs, dv);
       if (!(backward_error <= max_backward_error)) {
-        char buf[120];
-        std::snprintf(buf, sizeof buf, "backward error %.2g after refinement (the pivoting lu solver may do better)",
-                      backward_error);
-        linear_failure_ = buf;
+        linear_failure_ = "backward error " + format_number(backward_error, 2) +
+                          " after refinement (the pivoting lu solver may do better)";
         return false;
       }
       break;
