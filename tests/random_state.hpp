@@ -1,7 +1,7 @@
 // Random states of a scene for the finite-difference checks of forces and Jacobians.
 #pragma once
 
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 
 #include <limits>
 #include <random>

@@ -1,8 +1,8 @@
 // Bad input, end to end: every chapter program is run with what a reader might mistype, and must answer with exit
 // status 2, one line on stderr naming the flag (or the file) and what is accepted, and nothing written.
 // The parser itself is also checked in-process, where the sanitizer build sees every byte it touches.
-#include "cloth/command_line.hpp"
-#include "cloth/input_error.hpp"
+#include "program/command_line.hpp"
+#include "base/input_error.hpp"
 #include "integrators/butcher_tableau.hpp"
 #include "integrators/methods.hpp"
 #include "program_runner.hpp"

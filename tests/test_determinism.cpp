@@ -1,7 +1,7 @@
 // The same command gives the same cloth, to the last bit: every method run twice from scratch ends in identical
 // doubles, and every chapter program run twice writes byte-identical final.dat. A figure or a table of the book
 // can then be regenerated and compared, and a change in a result always means a change in the code.
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 #include "integrators/butcher_tableau.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/simulate.hpp"

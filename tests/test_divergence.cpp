@@ -1,10 +1,11 @@
 // Runs that go wrong are results, not crashes: a diverging run stops with status 3, says at which step and time,
 // and keeps its outputs up to the last sane state; a Newton step that fails is reported with its residual and is
 // never accepted. Checked in the library (simulate, ImplicitEuler) and end to end (the chapter programs).
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 #include "integrators/explicit_euler.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
+#include "program/run_outputs.hpp"
 #include "program_runner.hpp"
 
 #include <doctest/doctest.h>

@@ -3,7 +3,7 @@
 // damper injects), and the guard for coincident particles.
 #include <doctest/doctest.h>
 
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 
 #include <Eigen/Dense>
 #include <cmath>

@@ -3,7 +3,7 @@
 // the Jacobians), symmetric (symmetric), definite (positive definite where the exact matrix is not).
 #include <doctest/doctest.h>
 
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 
 #include <Eigen/Dense>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Linear stability on the undamped oscillator (stability functions R(z) at z = i h omega), explicit Euler's
 // energy growth, and implicit Euler's unconditional stability on the stiff report scene.
-#include "cloth/single_spring.hpp"
+#include "model/single_spring.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/simulate.hpp"
 

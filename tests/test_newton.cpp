@@ -1,8 +1,9 @@
 // Newton's method inside implicit Euler: quadratic convergence on a stiff step, the failure policy (a step is
 // never accepted unconverged), Baraff and Witkin's one-iteration step, and which solver takes which matrix.
-#include "cloth/input_error.hpp"
+#include "base/input_error.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
+#include "program/run_outputs.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
 // Observed orders of accuracy on a problem with a closed-form solution: the damped single spring of Chapter 2
-// (src/cloth/single_spring.hpp), m s'' + D s' + K s = 0, exactly linear inside the cloth model.
-#include "cloth/single_spring.hpp"
+// (src/model/single_spring.hpp), m s'' + D s' + K s = 0, exactly linear inside the cloth model.
+#include "model/single_spring.hpp"
 #include "integrators/methods.hpp"
 
 #include <doctest/doctest.h>

@@ -1,7 +1,7 @@
 // Output files that cannot be written in full are reported, never passed over: every writer throws OutputError
 // naming the file, and a chapter program turns it into one line on stderr and exit status 2. A full disk is
 // played by Linux's /dev/full, which accepts the open and refuses every write with ENOSPC.
-#include "cloth/output.hpp"
+#include "program/output.hpp"
 #include "program_runner.hpp"
 
 #include <doctest/doctest.h>

@@ -1,8 +1,8 @@
-// The shared power iteration (cloth/power_iteration.hpp) against matrices whose eigenvalues are known by
+// The shared power iteration (analysis/power_iteration.hpp) against matrices whose eigenvalues are known by
 // construction, and the cloth's fastest rest frequency against the dense symmetric eigen-solver.
-#include "cloth/fastest_modes.hpp"
-#include "cloth/power_iteration.hpp"
-#include "cloth/spectrum.hpp"
+#include "analysis/fastest_modes.hpp"
+#include "analysis/power_iteration.hpp"
+#include "analysis/spectrum.hpp"
 
 #include <Eigen/QR>
 #include <doctest/doctest.h>

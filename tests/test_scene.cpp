@@ -3,8 +3,8 @@
 // integrator says a single particle would (internal forces cancel).
 #include <doctest/doctest.h>
 
-#include "cloth/force_field.hpp"
-#include "cloth/input_error.hpp"
+#include "model/force_field.hpp"
+#include "base/input_error.hpp"
 #include "integrators/explicit_euler.hpp"
 #include "integrators/simulate.hpp"
 #include "integrators/symplectic_euler.hpp"

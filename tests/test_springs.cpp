@@ -3,9 +3,9 @@
 // forms of cloth::spring_count; grids too small to be a cloth are refused.
 #include <doctest/doctest.h>
 
-#include "cloth/command_line.hpp"
-#include "cloth/input_error.hpp"
-#include "cloth/scene.hpp"
+#include "program/command_line.hpp"
+#include "base/input_error.hpp"
+#include "model/scene.hpp"
 
 #include <array>
 #include <cmath>

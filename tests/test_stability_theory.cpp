@@ -1,7 +1,7 @@
 // Chapter 7's theory against closed forms: R(z) from the tableaus, the stability limits along the axes,
 // symplectic Euler's oscillator condition, the spectrum of a chain, the power iteration and the sagged equilibrium.
-#include "cloth/spectrum.hpp"
-#include "integrators/stability_function.hpp"
+#include "analysis/spectrum.hpp"
+#include "analysis/stability_function.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
 // The Butcher tableau: the built-ins have exactly the order they claim, the report's table read from its file is
 // RK4, and the validator refuses every kind of bad tableau with a message naming the row or condition.
-#include "cloth/input_error.hpp"
+#include "base/input_error.hpp"
 #include "integrators/butcher_tableau.hpp"
 
 #include <doctest/doctest.h>

@@ -1,8 +1,8 @@
 // Chapter 1: the spring model. Counts each family's springs, tabulates force against extension and the energy of
 // a uniformly stretched sheet, and checks that the forces are minus the gradient of the energy.
-#include "cloth/command_line.hpp"
-#include "cloth/force_field.hpp"
-#include "cloth/output.hpp"
+#include "program/command_line.hpp"
+#include "model/force_field.hpp"
+#include "program/output.hpp"
 
 #include <algorithm>
 #include <cmath>

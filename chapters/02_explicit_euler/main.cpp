@@ -1,12 +1,13 @@
 // Chapter 2: explicit Euler on the report's cloth, symplectic Euler beside it, and the measurement of explicit
 // Euler's energy growth factor (1 + (h omega)^2) per step on an undamped spring.
-#include "cloth/command_line.hpp"
-#include "cloth/fastest_modes.hpp"
-#include "cloth/format_number.hpp"
-#include "cloth/input_error.hpp"
-#include "cloth/single_spring.hpp"
+#include "program/command_line.hpp"
+#include "analysis/fastest_modes.hpp"
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
+#include "model/single_spring.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/simulate.hpp"
+#include "program/run_outputs.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,12 +1,13 @@
 // Chapter 3: any explicit Runge-Kutta method, given by its Butcher tableau (a built-in name or a file), on the
 // report's cloth; and the observed order of every built-in tableau on the single spring of Chapter 2.
-#include "cloth/command_line.hpp"
-#include "cloth/fastest_modes.hpp"
-#include "cloth/format_number.hpp"
-#include "cloth/input_error.hpp"
-#include "cloth/single_spring.hpp"
+#include "program/command_line.hpp"
+#include "analysis/fastest_modes.hpp"
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
+#include "model/single_spring.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/simulate.hpp"
+#include "program/run_outputs.hpp"
 
 #include <cmath>
 #include <cstdio>

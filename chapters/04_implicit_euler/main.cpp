@@ -1,10 +1,11 @@
 // Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the analytic sparse
 // Jacobian; Baraff and Witkin's one-iteration variant beside full Newton; the residuals of one stiff step.
-#include "cloth/command_line.hpp"
-#include "cloth/format_number.hpp"
-#include "cloth/input_error.hpp"
+#include "program/command_line.hpp"
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
+#include "program/run_outputs.hpp"
 
 #include <cmath>
 #include <cstdio>

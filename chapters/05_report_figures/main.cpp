@@ -1,12 +1,13 @@
 // Chapter 5: the report's comparison regenerated. Runs explicit Euler, symplectic Euler, RK4 and implicit Euler on
 // the report scene at (K, D) = (50, 0), (200, 0), (200, 20), then sweeps K x D per method, and writes the data
 // of the chapter's figures (strain-coloured meshes, energy, sag, animations, heat maps) and their summary tables.
-#include "cloth/command_line.hpp"
-#include "cloth/fastest_modes.hpp"
-#include "cloth/format_number.hpp"
-#include "cloth/input_error.hpp"
+#include "program/command_line.hpp"
+#include "analysis/fastest_modes.hpp"
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/simulate.hpp"
+#include "program/run_outputs.hpp"
 #include "run_pool.hpp"
 #include "strain_mesh.hpp"
 
@@ -123,7 +124,7 @@ double rest_stiffness_eigenvalue(const SceneParams& base) {
   SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
   const Vector x = scene.initial_positions();
   field.jacobians(x, Vector::Zero(x.size()), dfdx, dfdv);
-  return largest_rate(dfdx, p.mass);  // cloth/fastest_modes.hpp: power iteration on -M^{-1} df/dx
+  return largest_rate(dfdx, p.mass);  // analysis/fastest_modes.hpp: power iteration on -M^{-1} df/dx
 }
 
 // The same damping eigenvalue, lambda_D = largest eigenvalue of sum u u^T / m, on a deformed cloth (every particle's

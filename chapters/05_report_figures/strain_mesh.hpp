@@ -2,7 +2,7 @@
 // gnuplot `splot ... lc palette` shows where the cloth stretches (red) and where it is compressed (blue).
 #pragma once
 
-#include "cloth/scene.hpp"
+#include "model/scene.hpp"
 
 #include <Eigen/Core>
 #include <cmath>

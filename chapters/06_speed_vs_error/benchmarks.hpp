@@ -3,7 +3,7 @@
 // several timed runs after a warm-up.
 #pragma once
 
-#include "cloth/scene.hpp"
+#include "model/scene.hpp"
 
 #include <string>
 #include <vector>

@@ -5,7 +5,7 @@
 #include "benchmarks.hpp"
 #include "studies.hpp"
 
-#include "cloth/command_line.hpp"
+#include "program/command_line.hpp"
 
 #include <cstdio>
 

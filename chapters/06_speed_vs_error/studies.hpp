@@ -2,7 +2,7 @@
 // solution and its credentials, the work-precision sweep, and the cost of a step against the grid size.
 #pragma once
 
-#include "cloth/scene.hpp"
+#include "model/scene.hpp"
 #include "integrators/stepper.hpp"
 
 #include <cstdio>

@@ -1,14 +1,14 @@
 // Chapter 7: when is each method stable? Draws every method's stability region from its tableau, the cloth's
 // spectrum over it, predicts the largest stable step h_max from the two, and measures h_max by bisection on the
 // report scene over a log grid of K, for D = 0 and D = 20.
-#include "cloth/command_line.hpp"
-#include "cloth/format_number.hpp"
-#include "cloth/input_error.hpp"
-#include "cloth/output.hpp"
-#include "cloth/spectrum.hpp"
+#include "program/command_line.hpp"
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
+#include "program/output.hpp"
+#include "analysis/spectrum.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/simulate.hpp"
-#include "integrators/stability_function.hpp"
+#include "analysis/stability_function.hpp"
 
 #include <atomic>
 #include <chrono>

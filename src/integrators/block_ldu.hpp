@@ -7,7 +7,7 @@
 #include <array>
 #include <vector>
 
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 
 namespace cloth {
 

@@ -1,7 +1,7 @@
 // Butcher tableaus: the built-in methods, the order conditions that check them, and the tableau file format.
 #include "integrators/butcher_tableau.hpp"
 
-#include "cloth/input_error.hpp"
+#include "base/input_error.hpp"
 
 #include <cmath>
 #include <fstream>

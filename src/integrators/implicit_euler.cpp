@@ -1,8 +1,8 @@
 // Newton's method for the implicit Euler step, with the linear solver chosen for the matrix it gets.
 #include "integrators/implicit_euler.hpp"
 
-#include "cloth/format_number.hpp"
-#include "cloth/input_error.hpp"
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -68,6 +68,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
   using clock = std::chrono::steady_clock;
   linear_failure_.clear();
+  linear_failure_kind_ = StepFailureKind::none;
   auto t0 = clock::now();
   switch (settings_.solver) {
     case LinearSolverKind::ldlt:
@@ -76,6 +77,7 @@ bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
       ++counters_.factorizations;
       timing_.factorization += seconds_since(t0);
       if (!factored) {
+        linear_failure_kind_ = StepFailureKind::factorization_singular;
         linear_failure_ = "a pivot block is singular";
         return false;
       }
@@ -85,6 +87,7 @@ bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
       // step rather than steering Newton with it.
       const double backward_error = block_.solve(A_, rhs, dv);
       if (!(backward_error <= max_backward_error)) {
+        linear_failure_kind_ = StepFailureKind::refinement_failed;
         linear_failure_ = "backward error " + format_number(backward_error, 2) +
                           " after refinement (the pivoting lu solver may do better)";
         return false;
@@ -95,14 +98,22 @@ bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
       lu_.factorize(A_);
       ++counters_.factorizations;
       timing_.factorization += seconds_since(t0);
-      if (lu_.info() != Eigen::Success) return false;
+      if (lu_.info() != Eigen::Success) {
+        linear_failure_kind_ = StepFailureKind::factorization_singular;
+        linear_failure_ = "SparseLU could not factorize the matrix";
+        return false;
+      }
       t0 = clock::now();
       dv = lu_.solve(rhs);
       break;
     case LinearSolverKind::automatic: return false;  // never reached: resolve() ran in the constructor
     case LinearSolverKind::cg: {
       // The block-Jacobi preconditioner: each particle's 3x3 diagonal block inverted, O(n).
-      if (!cg_.compute(A_)) return false;
+      if (!cg_.compute(A_)) {
+        linear_failure_kind_ = StepFailureKind::factorization_singular;
+        linear_failure_ = "a diagonal block of the preconditioner is singular";
+        return false;
+      }
       timing_.factorization += seconds_since(t0);
       t0 = clock::now();
       // The first update of a step resembles the previous step's, so it seeds CG; later updates start at 0.
@@ -110,13 +121,22 @@ bool ImplicitEuler::solve(const Vector& rhs, Vector& dv, bool warm_start) {
       else dv.setZero();
       const bool converged = cg_.solve(A_, rhs, dv, settings_.cg_tolerance, settings_.cg_max_iterations);
       counters_.cg_iterations += cg_.iterations();
-      if (!converged) return false;
+      if (!converged) {
+        linear_failure_kind_ = StepFailureKind::cg_not_converged;
+        linear_failure_ = "CG did not converge in " + std::to_string(cg_.iterations()) + " iterations";
+        return false;
+      }
       break;
     }
   }
   ++counters_.linear_solves;
   timing_.solve += seconds_since(t0);
-  return dv.allFinite();
+  if (!dv.allFinite()) {
+    linear_failure_kind_ = StepFailureKind::newton_not_converged;
+    linear_failure_ = "the update is not finite";
+    return false;
+  }
+  return true;
 }
 
 double ImplicitEuler::residual_at(const Vector& x, const Vector& v, double h) {
@@ -160,7 +180,7 @@ bool ImplicitEuler::step(double h, Vector& x, Vector& v) {
       std::snprintf(buf, sizeof buf, "linear solve (%s) failed in Newton iteration %d, |r|_inf = %.3g%s%s",
                     linear_solver_name(settings_.solver), k + 1, residual, linear_failure_.empty() ? "" : ": ",
                     linear_failure_.c_str());
-      failure_.reason = buf;
+      failure_ = {linear_failure_kind_, buf};
       counters_.newton_iterations += k + 1;
       return false;
     }
@@ -195,7 +215,7 @@ bool ImplicitEuler::step(double h, Vector& x, Vector& v) {
   char buf[200];
   std::snprintf(buf, sizeof buf, "Newton did not converge in %d iterations: |r|_inf = %.3g, |dv|_inf = %.3g",
                 settings_.max_iterations, residuals_.back(), update);
-  failure_.reason = buf;
+  failure_ = {StepFailureKind::newton_not_converged, buf};
   counters_.newton_iterations += settings_.max_iterations;
   return false;
 }

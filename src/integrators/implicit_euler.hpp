@@ -74,6 +74,7 @@ class ImplicitEuler final : public Stepper {
   static constexpr double max_backward_error = 1e-11;
 
   NewtonSettings settings_;
+  StepFailureKind linear_failure_kind_ = StepFailureKind::none;
   std::string linear_failure_;  // why the last linear solve failed, for the step's failure reason
   SparseMatrix A_;
   BlockLDU block_;

@@ -1,7 +1,7 @@
 // The method registry: names to steppers.
 #include "integrators/methods.hpp"
 
-#include "cloth/input_error.hpp"
+#include "base/input_error.hpp"
 #include "integrators/explicit_euler.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/symplectic_euler.hpp"

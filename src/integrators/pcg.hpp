@@ -3,7 +3,7 @@
 // construction, unlike Eigen's ConjugateGradient, which allocates its work vectors on every solve.
 #pragma once
 
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 
 #include <vector>
 

@@ -2,14 +2,32 @@
 // count the work, time it, and stop cleanly when the state diverges or a step fails.
 #pragma once
 
-#include "cloth/command_line.hpp"
-#include "cloth/output.hpp"
 #include "integrators/stepper.hpp"
 
 #include <string>
 #include <vector>
 
 namespace cloth {
+
+/// Time stepping and output settings of a run.
+struct RunSettings {
+  double dt = 0.01;      ///< h [s]
+  double t_end = 2.0;    ///< T [s]
+  int frames = 20;       ///< frames.dat holds the cloth at t = k T / frames, k = 0..frames
+  std::string out_dir;   ///< where outputs go
+};
+
+/// One line of energy.dat.
+struct EnergySample {
+  double t;
+  Energy energy;
+};
+
+/// The cloth at one instant: every particle's position in grid order (3 per particle).
+struct Frame {
+  double t;
+  Vector positions;
+};
 
 /// How a run ended.
 enum class RunStatus { ok, diverged, step_failed };
@@ -38,13 +56,5 @@ std::string divergence_reason(const Vector& x, const Vector& v, double radius);
 /// Runs the scene's initial state to settings.t_end with steps of settings.dt (the last one shortened if T is
 /// not a multiple of h). Nothing is allocated inside the step loop: every buffer is sized before it starts.
 RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record = true);
-
-/// Writes final.dat, energy.dat, frames.dat and run.txt into settings.out_dir, with `extra` lines in run.txt.
-void write_outputs(const RunResult& result, const Stepper& stepper, const RunSettings& settings,
-                   const std::vector<std::pair<std::string, std::string>>& extra = {});
-
-/// Prints a one-line summary, and for a failed run one line on stderr with the step and time; returns the exit
-/// status of MODEL.md (0 finished, 3 diverged or failed).
-int report(const RunResult& result, const Stepper& stepper, const std::string& program);
 
 }  // namespace cloth

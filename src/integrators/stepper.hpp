@@ -2,7 +2,7 @@
 // counting the work it did in machine-independent units.
 #pragma once
 
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 
 #include <string>
 
@@ -20,8 +20,35 @@ struct StepCounters {
   long long line_search_halvings = 0; ///< Newton updates halved because the full one raised the residual
 };
 
-/// Why a step could not be taken (a Newton iteration that did not converge, a failed factorization).
+/// What stopped a step. run.txt's status names the kind (`step_failed newton_not_converged ...`, the model page's
+/// table), so the names below are part of the programs' contract.
+enum class StepFailureKind {
+  none,                    ///< no failure
+  newton_not_converged,    ///< Newton's residual did not fall below its tolerance within the iteration limit
+  factorization_singular,  ///< a pivot of the direct factorization was singular
+  cg_not_converged,        ///< conjugate gradients did not reach their tolerance
+  refinement_failed,       ///< iterative refinement could not bring the backward error down
+  line_search_exhausted,   ///< no damped Newton update lowered the residual
+  step_size_too_small,     ///< step control needed a step below its floor
+};
+
+/// The contract's name of a failure kind ("newton_not_converged", ...).
+[[nodiscard]] constexpr const char* step_failure_name(StepFailureKind kind) {
+  switch (kind) {
+    case StepFailureKind::none: return "none";
+    case StepFailureKind::newton_not_converged: return "newton_not_converged";
+    case StepFailureKind::factorization_singular: return "factorization_singular";
+    case StepFailureKind::cg_not_converged: return "cg_not_converged";
+    case StepFailureKind::refinement_failed: return "refinement_failed";
+    case StepFailureKind::line_search_exhausted: return "line_search_exhausted";
+    case StepFailureKind::step_size_too_small: return "step_size_too_small";
+  }
+  return "unknown";
+}
+
+/// Why a step could not be taken: its kind and one line of detail.
 struct StepFailure {
+  StepFailureKind kind = StepFailureKind::none;
   std::string reason;  ///< one line: what failed, with iteration count and residual
 };
 

@@ -1,5 +1,5 @@
 // Stability functions and amplification factors: the linear theory that predicts when each method is stable.
-#include "integrators/stability_function.hpp"
+#include "analysis/stability_function.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Spring, damping and gravity forces (MODEL.md), their energies, and their analytic Jacobians refilled in a
 // sparsity pattern built once. The spring loops are the hot loops of every chapter: they read springs
 // contiguously, branch on the damping law once per family (a template), and allocate nothing.
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-// printf's %g behind a std::string, for cloth/format_number.hpp.
-#include "cloth/format_number.hpp"
+// printf's %g behind a std::string, for base/format_number.hpp.
+#include "base/format_number.hpp"
 
 #include <cstdio>
 

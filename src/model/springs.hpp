@@ -2,7 +2,7 @@
 // configuration and stored contiguously, grouped by family, so that force loops stream through them.
 #pragma once
 
-#include "cloth/grid.hpp"
+#include "model/grid.hpp"
 
 #include <array>
 #include <cstdint>

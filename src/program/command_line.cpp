@@ -1,9 +1,9 @@
 // Strict parsing of the shared command-line flags of MODEL.md.
-#include "cloth/command_line.hpp"
+#include "program/command_line.hpp"
 
-#include "cloth/format_number.hpp"
-#include "cloth/input_error.hpp"
-#include "cloth/output.hpp"
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
+#include "program/output.hpp"
 
 #include <cctype>
 #include <cerrno>

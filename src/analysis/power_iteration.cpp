@@ -1,5 +1,5 @@
-// Power iteration with a two-term fit per step (cloth/power_iteration.hpp).
-#include "cloth/power_iteration.hpp"
+// Power iteration with a two-term fit per step (analysis/power_iteration.hpp).
+#include "analysis/power_iteration.hpp"
 
 #include <cmath>
 #include <utility>

@@ -2,7 +2,7 @@
 // Jacobians df/dx and df/dv assembled into sparse matrices whose pattern is built once per scene.
 #pragma once
 
-#include "cloth/scene.hpp"
+#include "model/scene.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>

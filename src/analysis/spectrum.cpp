@@ -1,5 +1,5 @@
 // Eigenvalues of the linearised cloth and its sagged equilibrium, from the analytic Jacobians of ForceField.
-#include "cloth/spectrum.hpp"
+#include "analysis/spectrum.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>

@@ -1,5 +1,5 @@
 // Plain-text output files, written with enough digits to reproduce every double (%.17g).
-#include "cloth/output.hpp"
+#include "program/output.hpp"
 
 #include <cerrno>
 #include <cstdio>

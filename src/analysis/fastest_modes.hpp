@@ -3,8 +3,8 @@
 // iteration on the model's own sparse Jacobians.
 #pragma once
 
-#include "cloth/force_field.hpp"
-#include "cloth/power_iteration.hpp"
+#include "model/force_field.hpp"
+#include "analysis/power_iteration.hpp"
 
 #include <cmath>
 #include <utility>
@@ -12,7 +12,7 @@
 namespace cloth {
 
 /// Largest eigenvalue of -M^{-1} J for a symmetric negative semidefinite J, by power iteration
-/// (cloth/power_iteration.hpp). The top modes of the cloth lie close together, which the iteration's two-term fit
+/// (analysis/power_iteration.hpp). The top modes of the cloth lie close together, which the iteration's two-term fit
 /// copes with; it runs until the estimate changes by less than 1e-9 relative over 100 iterations (each costs two
 /// sparse products).
 inline double largest_rate(const SparseMatrix& J, double mass) {

@@ -3,7 +3,7 @@
 // (Chapter 7: not symmetric, with complex eigenvalues).
 #pragma once
 
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 
 #include <array>
 #include <complex>

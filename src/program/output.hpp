@@ -1,7 +1,8 @@
 // Writers for the output files of MODEL.md: final.dat, energy.dat, frames.dat and run.txt.
 #pragma once
 
-#include "cloth/force_field.hpp"
+#include "integrators/simulate.hpp"
+#include "model/force_field.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -16,18 +17,6 @@ namespace cloth {
 class OutputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
-};
-
-/// One line of energy.dat.
-struct EnergySample {
-  double t;
-  Energy energy;
-};
-
-/// The cloth at one instant: every particle's position in grid order (3 per particle).
-struct Frame {
-  double t;
-  Vector positions;
 };
 
 // Each writer throws OutputError when its file is not written in full.

@@ -2,7 +2,7 @@
 // Euler's energy growth on it, Chapter 3 and the tests measure observed orders of accuracy and stability limits.
 #pragma once
 
-#include "cloth/force_field.hpp"
+#include "model/force_field.hpp"
 
 #include <cmath>
 

@@ -2,21 +2,14 @@
 // chapter-specific flags on top, and strict validation (one clear line and exit status 2 on bad input).
 #pragma once
 
-#include "cloth/scene.hpp"
+#include "integrators/simulate.hpp"
+#include "model/scene.hpp"
 
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace cloth {
-
-/// Time stepping and output settings of a run.
-struct RunSettings {
-  double dt = 0.01;      ///< h [s]
-  double t_end = 2.0;    ///< T [s]
-  int frames = 20;       ///< frames.dat holds the cloth at t = k T / frames, k = 0..frames
-  std::string out_dir;   ///< where outputs go
-};
 
 /// Everything the shared flags set.
 struct Options {

@@ -3,8 +3,8 @@
 // the sagged static equilibrium about which the cloth is linearised.
 #pragma once
 
-#include "cloth/force_field.hpp"
-#include "cloth/power_iteration.hpp"
+#include "model/force_field.hpp"
+#include "analysis/power_iteration.hpp"
 
 #include <array>
 #include <complex>
@@ -31,7 +31,7 @@ std::array<std::complex<double>, 2> mode_eigenvalues(double omega2, double c);
 /// with c = beta omega^2. Exact then, and cheap: one symmetric eigenproblem serves every (K, D).
 std::vector<std::complex<double>> proportional_spectrum(const std::vector<double>& omega2, double beta);
 
-/// Largest |lambda| of J at (x, v) without forming J: power iteration (cloth/power_iteration.hpp) on sparse
+/// Largest |lambda| of J at (x, v) without forming J: power iteration (analysis/power_iteration.hpp) on sparse
 /// products with df/dx and df/dv. The dominant eigenvalues of a real J are often a conjugate pair, which the
 /// iteration's two-term fit resolves. Stops when the estimate changes by less than `tolerance` relatively over
 /// 10 iterations.

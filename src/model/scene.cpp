@@ -1,8 +1,8 @@
 // Building a scene: pinned set, free-slot numbering, springs and the initial state.
-#include "cloth/scene.hpp"
+#include "model/scene.hpp"
 
-#include "cloth/format_number.hpp"
-#include "cloth/input_error.hpp"
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,8 +2,8 @@
 // are pinned, and how the cloth starts. Pinned particles are not unknowns: the state holds free particles only.
 #pragma once
 
-#include "cloth/grid.hpp"
-#include "cloth/springs.hpp"
+#include "model/grid.hpp"
+#include "model/springs.hpp"
 
 #include <Eigen/Core>
 #include <array>
@@ -45,7 +45,7 @@ struct SceneParams {
 /// The largest grid a scene accepts, checked before anything is allocated.
 inline constexpr long long max_particles = 4'000'000;
 
-/// Throws InputError (see cloth/input_error.hpp) naming the first parameter out of range.
+/// Throws InputError (see base/input_error.hpp) naming the first parameter out of range.
 void validate(const SceneParams& params);
 
 /// A built scene. Particles are numbered in "slots": the free particles first, in grid order, then the pinned

@@ -1,5 +1,5 @@
 // Spring topology of the grid: which particle pairs each family joins, and their rest lengths.
-#include "cloth/springs.hpp"
+#include "model/springs.hpp"
 
 #include <algorithm>
 
