@@ -8,45 +8,39 @@
 
 namespace cloth {
 
-namespace {
+OutputFile::OutputFile(std::string path)
+    : path_(std::move(path)), temporary_(path_ + ".partial"), file_(std::fopen(temporary_.c_str(), "w")) {
+  if (file_ == nullptr) fail(errno);
+}
 
-// One output file. stdio buffers what fprintf writes, so a write the system refuses (a full disk) usually fails
-// only at a later flush or at fclose, and sets the stream's error flag rather than failing the fprintf that
-// caused it: whether the file is whole is known at close(), which every writer calls last.
-class OutputFile {
- public:
-  explicit OutputFile(std::string path) : path_(std::move(path)), file_(std::fopen(path_.c_str(), "w")) {
-    if (file_ == nullptr) fail(errno);
+OutputFile::~OutputFile() {
+  if (file_ != nullptr) {  // reached only when an exception or an interruption left a writer early
+    std::fclose(file_);
+    std::remove(temporary_.c_str());
   }
-  ~OutputFile() {
-    if (file_ != nullptr) std::fclose(file_);  // reached only when an exception left a writer early
+}
+
+void OutputFile::commit() {
+  errno = 0;
+  const bool flushed = std::fflush(file_) == 0 && std::ferror(file_) == 0;
+  const int flush_error = errno;
+  const bool closed = std::fclose(file_) == 0;
+  const int close_error = errno;
+  file_ = nullptr;
+  if (!flushed || !closed) {
+    std::remove(temporary_.c_str());
+    fail(!flushed ? flush_error : close_error);
   }
-  OutputFile(const OutputFile&) = delete;
-  OutputFile& operator=(const OutputFile&) = delete;
-
-  [[nodiscard]] std::FILE* get() const { return file_; }
-
-  /// Flushes and closes the file; throws OutputError if any write to it failed.
-  void close() {
-    errno = 0;
-    const bool flushed = std::fflush(file_) == 0 && std::ferror(file_) == 0;
-    const int flush_error = errno;
-    const bool closed = std::fclose(file_) == 0;
-    file_ = nullptr;
-    if (!flushed) fail(flush_error);
-    if (!closed) fail(errno);
+  if (std::rename(temporary_.c_str(), path_.c_str()) != 0) {
+    const int error = errno;
+    std::remove(temporary_.c_str());
+    fail(error);
   }
+}
 
- private:
-  [[noreturn]] void fail(int error) const {
-    throw OutputError("cannot write '" + path_ + "'" + (error != 0 ? std::string(": ") + std::strerror(error) : ""));
-  }
-
-  std::string path_;
-  std::FILE* file_;
-};
-
-}  // namespace
+void OutputFile::fail(int error) const {
+  throw OutputError("cannot write '" + path_ + "'" + (error != 0 ? std::string(": ") + std::strerror(error) : ""));
+}
 
 void write_final(const std::string& path, const Scene& scene, const ConstVectorRef& x, const ConstVectorRef& v) {
   OutputFile f(path);
@@ -59,7 +53,7 @@ void write_final(const std::string& path, const Scene& scene, const ConstVectorR
       if (s < scene.free_count()) p = x.segment<3>(3 * s), u = v.segment<3>(3 * s);
       std::fprintf(f.get(), "%d %d %.17g %.17g %.17g %.17g %.17g %.17g\n", i, j, p[0], p[1], p[2], u[0], u[1], u[2]);
     }
-  f.close();
+  f.commit();
 }
 
 void write_energy(const std::string& path, const std::vector<EnergySample>& samples) {
@@ -68,7 +62,7 @@ void write_energy(const std::string& path, const std::vector<EnergySample>& samp
   for (const EnergySample& s : samples)
     std::fprintf(f.get(), "%.10g %.17g %.17g %.17g %.17g\n", s.t, s.energy.kinetic, s.energy.gravity, s.energy.spring,
                  s.energy.total());
-  f.close();
+  f.commit();
 }
 
 void write_frames(const std::string& path, const Grid& grid, const std::vector<Frame>& frames) {
@@ -84,13 +78,13 @@ void write_frames(const std::string& path, const Grid& grid, const std::vector<F
       }
     }
   }
-  f.close();
+  f.commit();
 }
 
 void write_key_values(const std::string& path, const std::vector<std::pair<std::string, std::string>>& entries) {
   OutputFile f(path);
   for (const auto& [key, value] : entries) std::fprintf(f.get(), "%s = %s\n", key.c_str(), value.c_str());
-  f.close();
+  f.commit();
 }
 
 }  // namespace cloth

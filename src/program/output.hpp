@@ -4,6 +4,7 @@
 #include "integrators/simulate.hpp"
 #include "model/force_field.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -17,6 +18,32 @@ namespace cloth {
 class OutputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// One output file, written whole or not at all. It is written under a temporary name (`path` + ".partial") and
+/// renamed to `path` by commit(), so a final name never holds a partial file; destroyed without commit() (an
+/// exception, an interrupted run) it removes the temporary file. stdio buffers what fprintf writes, so a write the
+/// system refuses (a full disk) usually fails only at a later flush or at fclose, and sets the stream's error flag
+/// rather than failing the fprintf that caused it: whether the file is whole is known at commit(), which every
+/// writer calls last.
+class OutputFile {
+ public:
+  /// Opens the temporary file; throws OutputError naming `path` and the system's reason when it cannot.
+  explicit OutputFile(std::string path);
+  ~OutputFile();
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  [[nodiscard]] std::FILE* get() const { return file_; }
+
+  /// Flushes and closes the file and renames it into place; throws OutputError if any write to it failed.
+  void commit();
+
+ private:
+  [[noreturn]] void fail(int error) const;
+
+  std::string path_, temporary_;
+  std::FILE* file_;
 };
 
 // Each writer throws OutputError when its file is not written in full.
