@@ -5,7 +5,10 @@
 # displayed formula wider than the text column at a 1280 or an 800 px window. Exit status 0 when there is none,
 # 1 when there are problems, 2 when the check itself could not run.
 #
-#   docs/check_book.sh [HTML_DIR]        (default: build/docs/html; also `cmake --build build --target check_book`)
+#   docs/check_book.sh [HTML_DIR [PAGE.html ...]]
+#
+# HTML_DIR defaults to build/docs/html (`cmake --build build --target check_book` builds the book and runs this);
+# PAGEs restrict the check to those pages (links into the other pages then count as links to existing files).
 #
 # CHROMIUM names the browser (default: chromium, Debian's package).
 set -euo pipefail
@@ -29,7 +32,11 @@ cp "$here/check_book.html" "$here/check_book.js" "$work/"
 # mathjax/ MathJax's own files).
 {
   printf 'window.CHECK_BOOK = {root: "file://%s/", widths: [1280, 800], concurrency: 3, pages: [\n' "$html_dir"
-  (cd "$html_dir" && find . -maxdepth 1 -name '*.html' -printf '"%f",\n' | sort)
+  if [ $# -gt 1 ]; then
+    printf '"%s",\n' "${@:2}"
+  else
+    (cd "$html_dir" && find . -maxdepth 1 -name '*.html' -printf '"%f",\n' | sort)
+  fi
   printf ']};\n'
 } > "$work/pages.js"
 

@@ -1,7 +1,9 @@
 // Chapter 1: the spring model. Counts each family's springs, tabulates force against extension and the energy of
 // a uniformly stretched sheet, and checks that the forces are minus the gradient of the energy.
 #include "program/command_line.hpp"
+#include "base/format_number.hpp"
 #include "model/force_field.hpp"
+#include "program/fragment.hpp"
 #include "program/output.hpp"
 
 #include <algorithm>
@@ -50,7 +52,6 @@ int main(int argc, char** argv) {
     const std::string dir = opt.run.out_dir + "/";
     const Grid& g = scene.grid();
 
-    // [spring_counts]
     std::printf("grid %dx%d, spacing %g m: %d particles, %d free\n", g.M, g.N, g.d, scene.particle_count(),
                 scene.free_count());
     for (SpringFamily f : all_spring_families)
@@ -60,7 +61,19 @@ int main(int argc, char** argv) {
                                                  scene.springs().family[static_cast<int>(f)].begin)].rest_length
                                            : 0.0);
     std::printf("  total      springs: %4d\n", scene.springs().size());
-    // [spring_counts]
+    // The same counts for the chapter's page, beside the closed forms of cloth::spring_count.
+    const std::string command = reader_command(argc, argv);
+    {
+      MarkdownTable counts({"family", "springs built", "closed form", "rest length [m]"}, "lrrr");
+      for (SpringFamily f : all_spring_families) {
+        const SpringRange r = scene.springs().family[static_cast<int>(f)];
+        counts.add_row({family_name(f), std::to_string(scene.springs().count(f)), std::to_string(spring_count(f, g.M, g.N)),
+                        r.end > r.begin ? format_number(scene.springs().springs[static_cast<std::size_t>(r.begin)].rest_length)
+                                        : "(none)"});
+      }
+      counts.add_row({"all", std::to_string(scene.springs().size()), "", ""});
+      write_table_fragment(dir + "spring_counts.md", counts, command);
+    }
 
     // Force along the spring, K (L0 - l), and its energy, for one spring of each family, l from 0 to 2 L0.
     {
@@ -155,6 +168,12 @@ int main(int argc, char** argv) {
     std::FILE* out = std::fopen((dir + "gradient_check.txt").c_str(), "w");
     std::fprintf(out, "largest_relative_error = %.3e\n", worst);
     std::fclose(out);
+    MarkdownTable check({"randomly perturbed sheet (every coordinate moved by up to 0.3 d)", "measured"}, "lr");
+    check.add_row({"spring energy", format_number(e.spring, 3) + " J"});
+    check.add_row({"gravity energy", format_number(e.gravity, 3) + " J"});
+    check.add_row({"largest relative difference between f and -grad E (central differences, eps = 1e-6)",
+                   format_number(worst, 3)});
+    write_table_fragment(dir + "gradient_check.md", check, command);
     return worst < 1e-6 ? 0 : 1;
   });
 }

@@ -3,13 +3,18 @@
 #include "program/command_line.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "integrators/butcher_tableau.hpp"
+#include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
+#include "program/fragment.hpp"
 #include "program/run_outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 using namespace cloth;
@@ -28,7 +33,12 @@ const char* treatment_name(StiffnessTreatment t) {
 struct Outcome {
   int status;
   RunResult result;
+  std::string method;  // the stepper's name, as run.txt and the failure message give it
 };
+
+double iterations_per_step_of(const RunResult& r) {
+  return r.steps ? static_cast<double>(r.counters.newton_iterations) / static_cast<double>(r.steps) : 0.0;
+}
 
 // One run of the cloth with `newton`, outputs in `dir`.
 Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettings& newton, const std::string& dir,
@@ -50,14 +60,14 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
     std::printf("  Newton iterations per step: %.3f (%lld in %lld steps), %lld factorizations\n",
                 static_cast<double>(result.counters.newton_iterations) / static_cast<double>(result.steps),
                 result.counters.newton_iterations, result.steps, result.counters.factorizations);
-  return {status, std::move(result)};
+  return {status, std::move(result), stepper.name()};
 }
 
 // [stiff_step_residuals]
 // The residual |r|_inf after each Newton iteration of the first step of the report scene at K = 1e5 N/m,
 // h = 0.01 s (h omega_max ~ 10): exact Jacobian, sparse LU, tolerance tight enough to watch the sequence reach
 // rounding. Writes residuals.dat: iteration k, |r_k|, |r_k| / |r_{k-1}|^2.
-void stiff_step_residuals(const SceneParams& report_scene, const std::string& dir) {
+void stiff_step_residuals(const SceneParams& report_scene, const std::string& dir, const std::string& command) {
   SceneParams p = report_scene;
   p.stiffness = 1e5;
   p.damping = 0;
@@ -83,13 +93,36 @@ void stiff_step_residuals(const SceneParams& report_scene, const std::string& di
   }
   std::printf("\n");
   std::fclose(out);
+  // The page's table stops at the rounding floor: the first iterate the next one does not improve tenfold. The
+  // iterates after it only wander around the floor, and are summed up in one row.
+  MarkdownTable table({"Newton iteration k", "residual r_k (max norm) [N s]", "r_k / r_(k-1)^2"}, "rrr");
+  std::size_t floor = 0;
+  while (floor + 1 < r.size() && r[floor + 1] < 0.1 * r[floor]) ++floor;
+  for (std::size_t k = 0; k <= floor && k < r.size(); ++k)
+    table.add_row({std::to_string(k), format_number(r[k], 3),
+                   k == 0 ? "" : k == floor ? "(rounding floor)" : format_number(r[k] / (r[k - 1] * r[k - 1]), 2)});
+  if (floor + 1 < r.size()) {
+    const auto [low, high] = std::minmax_element(r.begin() + static_cast<std::ptrdiff_t>(floor) + 1, r.end());
+    table.add_row({std::to_string(floor + 1) + " to " + std::to_string(r.size() - 1),
+                   format_number(*low, 2) + " to " + format_number(*high, 2), "(rounding floor)"});
+  }
+  write_table_fragment(dir + "/stiff_step.md", table, command);
 }
 // [stiff_step_residuals]
 
+// What one setting's Newton iterations came to, over the steps it took.
+struct IterationSummary {
+  std::string solver;           // the linear solver the setting resolved to
+  long long accepted = 0;       // steps accepted
+  long long iterations = 0;     // Newton iterations in the accepted steps
+  long long most = 0;           // most iterations in one accepted step
+  std::optional<std::string> failure;  // the failed step, when one failed
+};
+
 // Newton iterations of every step for one setting, stepping by hand so that each step's count is seen:
 // iterations.dat gets t and the count; a failed step ends the file with its count and the step's time.
-void iterations_per_step(const SceneParams& params, const RunSettings& run, const NewtonSettings& newton,
-                         const std::string& path) {
+IterationSummary iterations_per_step(const SceneParams& params, const RunSettings& run, const NewtonSettings& newton,
+                                     const std::string& path) {
   const Scene scene(params);
   ForceField field(scene);
   ImplicitEuler stepper(field, newton);
@@ -98,20 +131,130 @@ void iterations_per_step(const SceneParams& params, const RunSettings& run, cons
   if (!out) throw InputError("--out: cannot write " + path);
   std::fprintf(out, "# t newton_iterations final_residual (K = %g, D = %g, h = %g, jacobian %s)\n", params.stiffness,
                params.damping, run.dt, treatment_name(newton.treatment));
+  IterationSummary summary;
+  summary.solver = linear_solver_name(stepper.settings().solver);
   const auto steps = std::llround(run.t_end / run.dt);
   for (long long n = 1; n <= steps; ++n) {
     const long long before = stepper.counters().newton_iterations;
     const bool ok = stepper.step(run.dt, x, v);
-    std::fprintf(out, "%.10g %lld %.6e\n", static_cast<double>(n) * run.dt,
-                 stepper.counters().newton_iterations - before, stepper.residual_history().back());
-    if (!ok) break;
+    const long long iterations = stepper.counters().newton_iterations - before;
+    std::fprintf(out, "%.10g %lld %.6e\n", static_cast<double>(n) * run.dt, iterations,
+                 stepper.residual_history().back());
+    if (!ok) {
+      summary.failure = "fails at step " + std::to_string(n) + ", t = " + format_number(static_cast<double>(n) * run.dt) +
+                        " s: " + std::to_string(iterations) + " iterations, residual " +
+                        format_number(stepper.residual_history().back(), 2);
+      break;
+    }
+    ++summary.accepted;
+    summary.iterations += iterations;
+    summary.most = std::max(summary.most, iterations);
   }
   std::fclose(out);
+  return summary;
+}
+
+// What the Newton matrix's treatment costs: the exact (= symmetric) Hessian against the definite matrix on the
+// undamped report scene, and the exact Jacobian against the symmetric one with damping.
+void treatments_table(const Options& opt, const IterationSummary& sym, const IterationSummary& def,
+                      const std::string& dir, const std::string& command) {
+  MarkdownTable table({"K, D", "Jacobian", "solver", "Newton iterations per step", "most in one step", "outcome"},
+                      "llrrrl");
+  const auto add = [&](const std::string& KD, const std::string& jacobian, const IterationSummary& s) {
+    const double mean = s.accepted ? static_cast<double>(s.iterations) / static_cast<double>(s.accepted) : 0.0;
+    table.add_row({KD, jacobian, s.solver, format_fixed(mean, 2), std::to_string(s.most),
+                   s.failure ? "**" + *s.failure + "**" : "finishes the " + format_number(opt.run.t_end) + " s"});
+  };
+  add("50, 0", "symmetric (= exact here)", sym);
+  add("50, 0", "definite", def);
+  SceneParams damped = opt.scene;
+  damped.stiffness = 200;
+  damped.damping = 20;
+  NewtonSettings exact, symmetric;
+  symmetric.treatment = StiffnessTreatment::symmetric;
+  add("200, 20", "symmetric", iterations_per_step(damped, opt.run, symmetric, dir + "/iterations_symmetric_K200_D20.dat"));
+  add("200, 20", "exact", iterations_per_step(damped, opt.run, exact, dir + "/iterations_exact_K200_D20.dat"));
+  write_table_fragment(dir + "/jacobian_treatments.md", table, command);
+}
+
+// The run a reader gets with `--jacobian definite`, and what it prints when its Newton iteration stalls.
+void definite_failure_transcript(const SceneParams& params, const RunSettings& run, const NewtonSettings& definite,
+                                 const std::string& dir, const std::string& program) {
+  const Outcome o = run_cloth(params, run, definite, dir + "/definite_K50_D0", program);
+  std::string text = "$ build/bin/" + program + " --jacobian definite\n";
+  if (o.status != 0) text += program + ": " + o.method + " " + o.result.message + "\n";
+  write_text_fragment(dir + "/definite_failure.txt", text + "$ echo $?\n" + std::to_string(o.status) + "\n");
+}
+
+// Numbers the page quotes in its prose, each a fragment of a sentence: the stiff cloth at a large step (which
+// the line search makes possible) and conjugate gradients on the report scene.
+void measured_sentences(const Options& opt, const std::string& dir, const std::string& program) {
+  SceneParams stiff = opt.scene;
+  stiff.stiffness = 1e5;
+  stiff.damping = 0;
+  RunSettings large_step = opt.run;
+  large_step.dt = 0.1;
+  const Outcome a = run_cloth(stiff, large_step, NewtonSettings{}, dir + "/stiff_K100000_h0.1", program);
+  write_text_fragment(dir + "/stiff_large_step.md",
+                      std::to_string(a.result.steps) + " steps, " + format_number(iterations_per_step_of(a.result), 2) +
+                          " Newton iterations per step");
+  SceneParams report_scene = opt.scene;
+  report_scene.stiffness = 50;
+  report_scene.damping = 0;
+  RunSettings short_run = opt.run;
+  short_run.t_end = 0.3;
+  NewtonSettings cg;
+  cg.solver = LinearSolverKind::cg;
+  cg.treatment = StiffnessTreatment::definite;
+  const Outcome b = run_cloth(report_scene, short_run, cg, dir + "/cg_K50_D0", program);
+  const StepCounters& n = b.result.counters;
+  write_text_fragment(dir + "/cg_run.md",
+                      "its " + std::to_string(b.result.steps) + " steps to " + format_number(b.result.t) + " s took " +
+                          format_number(iterations_per_step_of(b.result), 2) + " Newton iterations per step and " +
+                          format_number(static_cast<double>(n.cg_iterations) / static_cast<double>(n.newton_iterations), 2) +
+                          " CG iterations per solve (" + std::to_string(n.cg_iterations) + " in all)");
+}
+
+// Implicit Euler against RK4 on the damped report scene (K = 200, D = 20) to t = 1 s: RK4 at h = 1e-3 is the
+// reference (its own error, estimated from RK4 at h/2, is far smaller), and implicit Euler's distance from it
+// should halve with h, the method being of first order. Distances are max norms over all coordinates.
+void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const std::string& dir,
+                        const std::string& command) {
+  SceneParams p = report_scene;
+  p.stiffness = 200;
+  p.damping = 20;
+  run.t_end = 1;
+  const Scene scene(p);
+  ForceField field(scene);
+  const auto run_with = [&](Stepper& stepper, double h) {
+    run.dt = h;
+    RunResult r = simulate(stepper, run, false);
+    if (r.status != RunStatus::ok) throw std::runtime_error(stepper.name() + " " + r.message);
+    return r;
+  };
+  ExplicitRungeKutta rk4(field, tableau_from_argument("rk4"));
+  const RunResult reference = run_with(rk4, 1e-3);
+  const RunResult rk4_half = run_with(rk4, 5e-4);
+  MarkdownTable table({"K = 200, D = 20, to t = 1 s", "largest position difference from RK4 at h = 1e-3 [m]",
+                       "Newton iterations per step"}, "lrr");
+  double distance[2];
+  const double steps[2] = {1e-3, 5e-4};
+  for (int k = 0; k < 2; ++k) {
+    ImplicitEuler implicit(field, NewtonSettings{});
+    const RunResult r = run_with(implicit, steps[k]);
+    distance[k] = (r.x - reference.x).lpNorm<Eigen::Infinity>();
+    table.add_row({"implicit Euler, h = " + format_number(steps[k]), format_number(distance[k], 3),
+                   format_fixed(iterations_per_step_of(r), 2)});
+  }
+  table.add_row({"RK4, h = 5e-4", format_number((rk4_half.x - reference.x).lpNorm<Eigen::Infinity>(), 2), ""});
+  write_table_fragment(dir + "/rk4_agreement.md", table, command);
+  write_text_fragment(dir + "/rk4_halving_ratio.md", format_number(distance[0] / distance[1], 3));
 }
 
 // The report's three (K, D) with full Newton and with one Newton iteration, the stiff step's residuals, and the
 // definite (Choi & Ko) matrix against the symmetric one at K = 50.
-void report_runs(const Options& opt, const NewtonSettings& newton, const std::string& program) {
+void report_runs(const Options& opt, const NewtonSettings& newton, const std::string& program,
+                 const std::string& command) {
   const std::string dir = opt.run.out_dir;
   prepare_output_dir(dir);
   struct Config {
@@ -122,6 +265,9 @@ void report_runs(const Options& opt, const NewtonSettings& newton, const std::st
   if (!summary) throw InputError("--out: cannot write " + dir + "/comparison.dat");
   std::fprintf(summary, "# K D newton_per_step_full newton_per_step_one factorizations_full factorizations_one "
                         "wall_full wall_one E_final_full E_final_one max_position_difference\n");
+  MarkdownTable table({"K, D", "Newton iterations per step, full", "factorizations full / one", "E(2 s) full [J]",
+                       "E(2 s) one iteration [J]", "energy lost by 2 s, full", "largest position difference at 2 s [m]"},
+                      "lrrrrrr");
   for (const Config& c : configs) {
     SceneParams p = opt.scene;
     p.stiffness = c.K;
@@ -144,17 +290,28 @@ void report_runs(const Options& opt, const NewtonSettings& newton, const std::st
                  b.result.energy.back().energy.total(), diff);
     std::printf("K = %g, D = %g: full Newton %.3f iterations/step, one iteration: largest position difference at "
                 "t = %g s: %.4g m\n", c.K, c.D, per_step(a.result), a.result.t, diff);
+    const double E0 = a.result.energy.front().energy.total(), E_full = a.result.energy.back().energy.total();
+    table.add_row({format_number(c.K) + ", " + format_number(c.D), format_fixed(per_step(a.result), 2),
+                   std::to_string(a.result.counters.factorizations) + " / " +
+                       std::to_string(b.result.counters.factorizations),
+                   format_fixed(E_full, 2), format_fixed(b.result.energy.back().energy.total(), 2),
+                   format_number(100 * (E0 - E_full) / E0, 2) + "%", format_number(diff, 2)});
   }
   std::fclose(summary);
-  stiff_step_residuals(opt.scene, dir);
+  write_table_fragment(dir + "/report_runs.md", table, command);
+  stiff_step_residuals(opt.scene, dir, command);
   SceneParams p = opt.scene;
   p.stiffness = 50;
   p.damping = 0;
   NewtonSettings symmetric = newton, definite = newton;
   symmetric.treatment = StiffnessTreatment::symmetric;
   definite.treatment = StiffnessTreatment::definite;
-  iterations_per_step(p, opt.run, symmetric, dir + "/iterations_symmetric.dat");
-  iterations_per_step(p, opt.run, definite, dir + "/iterations_definite.dat");
+  const IterationSummary sym = iterations_per_step(p, opt.run, symmetric, dir + "/iterations_symmetric.dat");
+  const IterationSummary def = iterations_per_step(p, opt.run, definite, dir + "/iterations_definite.dat");
+  treatments_table(opt, sym, def, dir, command);
+  definite_failure_transcript(p, opt.run, definite, dir, program);
+  measured_sentences(opt, dir, program);
+  agreement_with_rk4(opt.scene, opt.run, dir, command);
 }
 
 }  // namespace
@@ -216,7 +373,7 @@ int main(int argc, char** argv) {
     // [jacobian_default]
     if (want_report_runs) {
       validate(newton, Scene(opt.scene));
-      report_runs(opt, newton, cli.program());
+      report_runs(opt, newton, cli.program(), reader_command(argc, argv));
       return 0;
     }
     return run_cloth(opt.scene, opt.run, newton, opt.run.out_dir, cli.program()).status;
