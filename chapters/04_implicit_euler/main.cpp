@@ -66,8 +66,8 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
 // [stiff_step_residuals]
 // The residual |r|_inf after each Newton iteration of the first step of the report scene at K = 1e5 N/m,
 // h = 0.01 s (h omega_max ~ 10): exact Jacobian, sparse LU, tolerance tight enough to watch the sequence reach
-// rounding. Writes residuals.dat: iteration k, |r_k|, |r_k| / |r_{k-1}|^2.
-void stiff_step_residuals(const SceneParams& report_scene, const std::string& dir, const std::string& command) {
+// rounding.
+std::vector<double> stiff_step_residuals(const SceneParams& report_scene) {
   SceneParams p = report_scene;
   p.stiffness = 1e5;
   p.damping = 0;
@@ -81,7 +81,12 @@ void stiff_step_residuals(const SceneParams& report_scene, const std::string& di
   ImplicitEuler stepper(field, newton);
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   stepper.step(0.01, x, v);  // if it fails the history still shows how far it got
-  const std::vector<double>& r = stepper.residual_history();
+  return stepper.residual_history();
+}
+// [stiff_step_residuals]
+
+// residuals.dat for the figure (iteration k, |r_k|, |r_k| / |r_{k-1}|^2), and the page's table of the same.
+void write_stiff_step(const std::vector<double>& r, const std::string& dir, const std::string& command) {
   std::FILE* out = std::fopen((dir + "/residuals.dat").c_str(), "w");
   if (!out) throw InputError("--out: cannot write " + dir + "/residuals.dat");
   std::fprintf(out, "# first step of the report scene, K = 1e5, D = 0, h = 0.01, exact Jacobian, LU\n");
@@ -93,11 +98,13 @@ void stiff_step_residuals(const SceneParams& report_scene, const std::string& di
   }
   std::printf("\n");
   std::fclose(out);
-  // The page's table stops at the rounding floor: the first iterate the next one does not improve tenfold. The
-  // iterates after it only wander around the floor, and are summed up in one row.
+  // The table stops at the rounding floor: the first iterate that no later one improves tenfold. The iterates
+  // after it only wander around the floor, and are summed up in one row.
   MarkdownTable table({"Newton iteration k", "residual r_k (max norm) [N s]", "r_k / r_(k-1)^2"}, "rrr");
   std::size_t floor = 0;
-  while (floor + 1 < r.size() && r[floor + 1] < 0.1 * r[floor]) ++floor;
+  while (floor + 1 < r.size() && *std::min_element(r.begin() + static_cast<std::ptrdiff_t>(floor) + 1, r.end()) <
+                                     0.1 * r[floor])
+    ++floor;
   for (std::size_t k = 0; k <= floor && k < r.size(); ++k)
     table.add_row({std::to_string(k), format_number(r[k], 3),
                    k == 0 ? "" : k == floor ? "(rounding floor)" : format_number(r[k] / (r[k - 1] * r[k - 1]), 2)});
@@ -108,7 +115,6 @@ void stiff_step_residuals(const SceneParams& report_scene, const std::string& di
   }
   write_table_fragment(dir + "/stiff_step.md", table, command);
 }
-// [stiff_step_residuals]
 
 // What one setting's Newton iterations came to, over the steps it took.
 struct IterationSummary {
@@ -186,8 +192,9 @@ void definite_failure_transcript(const SceneParams& params, const RunSettings& r
   write_text_fragment(dir + "/definite_failure.txt", text + "$ echo $?\n" + std::to_string(o.status) + "\n");
 }
 
-// Numbers the page quotes in its prose, each a fragment of a sentence: the stiff cloth at a large step (which
-// the line search makes possible) and conjugate gradients on the report scene.
+// Numbers the page quotes in its prose, each in a sentence of its own (Doxygen includes a file as a separate
+// word, so the page includes each at the end of a line): the stiff cloth at a large step, which the line search
+// makes possible, and conjugate gradients on the report scene.
 void measured_sentences(const Options& opt, const std::string& dir, const std::string& program) {
   SceneParams stiff = opt.scene;
   stiff.stiffness = 1e5;
@@ -196,8 +203,9 @@ void measured_sentences(const Options& opt, const std::string& dir, const std::s
   large_step.dt = 0.1;
   const Outcome a = run_cloth(stiff, large_step, NewtonSettings{}, dir + "/stiff_K100000_h0.1", program);
   write_text_fragment(dir + "/stiff_large_step.md",
-                      std::to_string(a.result.steps) + " steps, " + format_number(iterations_per_step_of(a.result), 2) +
-                          " Newton iterations per step");
+                      "At h = " + format_number(large_step.dt) + " s it takes " + std::to_string(a.result.steps) +
+                          " steps to t = " + format_number(a.result.t) + " s, with " +
+                          format_number(iterations_per_step_of(a.result), 2) + " Newton iterations per step.");
   SceneParams report_scene = opt.scene;
   report_scene.stiffness = 50;
   report_scene.damping = 0;
@@ -209,10 +217,11 @@ void measured_sentences(const Options& opt, const std::string& dir, const std::s
   const Outcome b = run_cloth(report_scene, short_run, cg, dir + "/cg_K50_D0", program);
   const StepCounters& n = b.result.counters;
   write_text_fragment(dir + "/cg_run.md",
-                      "its " + std::to_string(b.result.steps) + " steps to " + format_number(b.result.t) + " s took " +
-                          format_number(iterations_per_step_of(b.result), 2) + " Newton iterations per step and " +
+                      "On the report scene (K = 50, D = 0) its " + std::to_string(b.result.steps) + " steps to t = " +
+                          format_number(b.result.t) + " s took " + format_number(iterations_per_step_of(b.result), 2) +
+                          " Newton iterations per step and " +
                           format_number(static_cast<double>(n.cg_iterations) / static_cast<double>(n.newton_iterations), 2) +
-                          " CG iterations per solve (" + std::to_string(n.cg_iterations) + " in all)");
+                          " CG iterations per solve, " + std::to_string(n.cg_iterations) + " in all.");
 }
 
 // Implicit Euler against RK4 on the damped report scene (K = 200, D = 20) to t = 1 s: RK4 at h = 1e-3 is the
@@ -248,7 +257,8 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
   }
   table.add_row({"RK4, h = 5e-4", format_number((rk4_half.x - reference.x).lpNorm<Eigen::Infinity>(), 2), ""});
   write_table_fragment(dir + "/rk4_agreement.md", table, command);
-  write_text_fragment(dir + "/rk4_halving_ratio.md", format_number(distance[0] / distance[1], 3));
+  write_text_fragment(dir + "/rk4_halving_ratio.md", "Halving h divides implicit Euler's distance from RK4 by " +
+                                                         format_number(distance[0] / distance[1], 3) + ".");
 }
 
 // The report's three (K, D) with full Newton and with one Newton iteration, the stiff step's residuals, and the
@@ -299,7 +309,7 @@ void report_runs(const Options& opt, const NewtonSettings& newton, const std::st
   }
   std::fclose(summary);
   write_table_fragment(dir + "/report_runs.md", table, command);
-  stiff_step_residuals(opt.scene, dir, command);
+  write_stiff_step(stiff_step_residuals(opt.scene), dir, command);
   SceneParams p = opt.scene;
   p.stiffness = 50;
   p.damping = 0;
