@@ -118,8 +118,15 @@
     return "formula \\[" + shorten(script ? script.textContent : element.textContent, 60) + "\\]";
   }
 
-  // Figures, tables and displayed formulas that reach past the right edge of the text column (div.contents).
+  // Figures, tables and displayed formulas that reach past the right edge of the text column (div.contents), and
+  // code blocks whose lines do not fit their box and cannot be scrolled into view.
   function checkWidths(page, win, doc, width) {
+    for (const block of doc.querySelectorAll("div.contents div.fragment, div.contents pre")) {
+      const overflow = win.getComputedStyle(block).overflowX;
+      if (block.scrollWidth > block.clientWidth + 1 && overflow !== "auto" && overflow !== "scroll")
+        report(page, "code block '" + shorten(block.textContent, 40) + "' is cut off: its lines are " +
+                     block.scrollWidth + " px wide, its box " + block.clientWidth + " px at a " + width + " px window");
+    }
     for (const column of doc.querySelectorAll("div.contents")) {
       const box = column.getBoundingClientRect();
       if (box.width === 0) continue;

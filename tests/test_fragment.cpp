@@ -62,8 +62,9 @@ TEST_CASE("a table fragment ends with one line naming the command, the compiler,
 
 TEST_CASE("the build is named by the compiler's own version, CMake's flags and /proc/cpuinfo's model name") {
 #if defined(__clang__)
-  CHECK(cloth::compiler_description() == "Clang " + std::to_string(__clang_major__) + "." + std::to_string(__clang_minor__) +
-                                             "." + std::to_string(__clang_patchlevel__));
+  CHECK(cloth::compiler_description() == "Clang " + std::to_string(__clang_major__) + "." +
+                                             std::to_string(__clang_minor__) + "." +
+                                             std::to_string(__clang_patchlevel__));
 #elif defined(__GNUC__)
   CHECK(cloth::compiler_description() == "GCC " + std::to_string(__GNUC__) + "." + std::to_string(__GNUC_MINOR__) +
                                              "." + std::to_string(__GNUC_PATCHLEVEL__));

@@ -67,9 +67,11 @@ int main(int argc, char** argv) {
       MarkdownTable counts({"family", "springs built", "closed form", "rest length [m]"}, "lrrr");
       for (SpringFamily f : all_spring_families) {
         const SpringRange r = scene.springs().family[static_cast<int>(f)];
-        counts.add_row({family_name(f), std::to_string(scene.springs().count(f)), std::to_string(spring_count(f, g.M, g.N)),
-                        r.end > r.begin ? format_number(scene.springs().springs[static_cast<std::size_t>(r.begin)].rest_length)
-                                        : "(none)"});
+        const std::string rest_length =
+            r.end > r.begin ? format_number(scene.springs().springs[static_cast<std::size_t>(r.begin)].rest_length)
+                            : "(none)";
+        counts.add_row({family_name(f), std::to_string(scene.springs().count(f)),
+                        std::to_string(spring_count(f, g.M, g.N)), rest_length});
       }
       counts.add_row({"all", std::to_string(scene.springs().size()), "", ""});
       write_table_fragment(dir + "spring_counts.md", counts, command);

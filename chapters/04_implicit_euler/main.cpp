@@ -147,7 +147,8 @@ IterationSummary iterations_per_step(const SceneParams& params, const RunSetting
     std::fprintf(out, "%.10g %lld %.6e\n", static_cast<double>(n) * run.dt, iterations,
                  stepper.residual_history().back());
     if (!ok) {
-      summary.failure = "fails at step " + std::to_string(n) + ", t = " + format_number(static_cast<double>(n) * run.dt) +
+      const double t = static_cast<double>(n) * run.dt;
+      summary.failure = "fails at step " + std::to_string(n) + ", t = " + format_number(t) +
                         " s: " + std::to_string(iterations) + " iterations, residual " +
                         format_number(stepper.residual_history().back(), 2);
       break;
@@ -178,7 +179,8 @@ void treatments_table(const Options& opt, const IterationSummary& sym, const Ite
   damped.damping = 20;
   NewtonSettings exact, symmetric;
   symmetric.treatment = StiffnessTreatment::symmetric;
-  add("200, 20", "symmetric", iterations_per_step(damped, opt.run, symmetric, dir + "/iterations_symmetric_K200_D20.dat"));
+  add("200, 20", "symmetric",
+      iterations_per_step(damped, opt.run, symmetric, dir + "/iterations_symmetric_K200_D20.dat"));
   add("200, 20", "exact", iterations_per_step(damped, opt.run, exact, dir + "/iterations_exact_K200_D20.dat"));
   write_table_fragment(dir + "/jacobian_treatments.md", table, command);
 }
@@ -216,11 +218,12 @@ void measured_sentences(const Options& opt, const std::string& dir, const std::s
   cg.treatment = StiffnessTreatment::definite;
   const Outcome b = run_cloth(report_scene, short_run, cg, dir + "/cg_K50_D0", program);
   const StepCounters& n = b.result.counters;
+  const double cg_per_solve = static_cast<double>(n.cg_iterations) / static_cast<double>(n.newton_iterations);
   write_text_fragment(dir + "/cg_run.md",
                       "On the report scene (K = 50, D = 0) its " + std::to_string(b.result.steps) + " steps to t = " +
                           format_number(b.result.t) + " s took " + format_number(iterations_per_step_of(b.result), 2) +
                           " Newton iterations per step and " +
-                          format_number(static_cast<double>(n.cg_iterations) / static_cast<double>(n.newton_iterations), 2) +
+                          format_number(cg_per_solve, 2) +
                           " CG iterations per solve, " + std::to_string(n.cg_iterations) + " in all.");
 }
 
@@ -242,12 +245,12 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
     return r;
   };
   ExplicitRungeKutta rk4(field, tableau_from_argument("rk4"));
-  const RunResult reference = run_with(rk4, 1e-3);
-  const RunResult rk4_half = run_with(rk4, 5e-4);
-  MarkdownTable table({"K = 200, D = 20, to t = 1 s", "largest position difference from RK4 at h = 1e-3 [m]",
+  const double steps[2] = {1e-3, 5e-4};
+  const RunResult reference = run_with(rk4, steps[0]);
+  const RunResult rk4_half = run_with(rk4, steps[1]);
+  MarkdownTable table({"K = 200, D = 20, to t = 1 s", "largest position difference from RK4 at h = 0.001 [m]",
                        "Newton iterations per step"}, "lrr");
   double distance[2];
-  const double steps[2] = {1e-3, 5e-4};
   for (int k = 0; k < 2; ++k) {
     ImplicitEuler implicit(field, NewtonSettings{});
     const RunResult r = run_with(implicit, steps[k]);
@@ -255,7 +258,8 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
     table.add_row({"implicit Euler, h = " + format_number(steps[k]), format_number(distance[k], 3),
                    format_fixed(iterations_per_step_of(r), 2)});
   }
-  table.add_row({"RK4, h = 5e-4", format_number((rk4_half.x - reference.x).lpNorm<Eigen::Infinity>(), 2), ""});
+  const double rk4_difference = (rk4_half.x - reference.x).lpNorm<Eigen::Infinity>();
+  table.add_row({"RK4, h = " + format_number(steps[1]), format_number(rk4_difference, 2), ""});
   write_table_fragment(dir + "/rk4_agreement.md", table, command);
   write_text_fragment(dir + "/rk4_halving_ratio.md", "Halving h divides implicit Euler's distance from RK4 by " +
                                                          format_number(distance[0] / distance[1], 3) + ".");
@@ -276,7 +280,8 @@ void report_runs(const Options& opt, const NewtonSettings& newton, const std::st
   std::fprintf(summary, "# K D newton_per_step_full newton_per_step_one factorizations_full factorizations_one "
                         "wall_full wall_one E_final_full E_final_one max_position_difference\n");
   MarkdownTable table({"K, D", "Newton iterations per step, full", "factorizations full / one", "E(2 s) full [J]",
-                       "E(2 s) one iteration [J]", "energy lost by 2 s, full", "largest position difference at 2 s [m]"},
+                       "E(2 s) one iteration [J]", "energy lost by 2 s, full",
+                       "largest position difference at 2 s [m]"},
                       "lrrrrrr");
   for (const Config& c : configs) {
     SceneParams p = opt.scene;
