@@ -26,6 +26,7 @@ double mapped_bytes() {
 }  // namespace
 
 std::string format_bytes(double bytes) {
+  if (bytes >= 1e12) return format_number(bytes / 1e12, 3) + " TB";
   if (bytes >= 1e9) return format_number(bytes / 1e9, 3) + " GB";
   if (bytes >= 1e6) return format_number(bytes / 1e6, 3) + " MB";
   return format_number(bytes / 1e3, 3) + " kB";

@@ -20,7 +20,7 @@ struct MemoryLimit {
 /// more than what the address-space limit (ulimit -v, RLIMIT_AS) leaves beyond what the program already maps.
 MemoryLimit memory_limit();
 
-/// "12.3 GB", "456 MB", "789 kB".
+/// "1.2 TB", "12.3 GB", "456 MB", "789 kB".
 std::string format_bytes(double bytes);
 
 /// Throws InputError "<flag>: <what> needs about X, more than the Y a run may use (<source>)<advice>" when
