@@ -8,14 +8,19 @@
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
 #include "program/fragment.hpp"
+#include "program/interrupt.hpp"
+#include "program/limits.hpp"
+#include "program/output.hpp"
+#include "program/progress.hpp"
 #include "program/run_outputs.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
-#include <stdexcept>
 #include <string>
+#include <vector>
 
 using namespace cloth;
 
@@ -40,22 +45,20 @@ double iterations_per_step_of(const RunResult& r) {
   return r.steps ? static_cast<double>(r.counters.newton_iterations) / static_cast<double>(r.steps) : 0.0;
 }
 
-// One run of the cloth with `newton`, outputs in `dir`.
+// One run of the cloth with `newton` (validated before anything was written), outputs in `dir`.
 Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettings& newton, const std::string& dir,
                   const std::string& program) {
   const Scene scene(params);
-  validate(newton, scene);  // before anything is written
   ForceField field(scene);
   ImplicitEuler stepper(field, newton);  // resolves the automatic solver choice
   run.out_dir = dir;
-  prepare_output_dir(dir);
+  run.progress = terminal_progress(program);
   RunResult result = simulate(stepper, run);
-  write_outputs(result, stepper, run,
-                {{"linear_solver", linear_solver_name(stepper.settings().solver)},
-                 {"jacobian", treatment_name(newton.treatment)},
-                 {"newton_tol", format_number(newton.tolerance, 10)},
-                 {"newton_max_iter", std::to_string(newton.max_iterations)}});
-  const int status = report(result, stepper, program);
+  const int status = finish_run(result, stepper, run, program,
+                                {{"linear_solver", linear_solver_name(stepper.settings().solver)},
+                                 {"jacobian", treatment_name(newton.treatment)},
+                                 {"newton_tol", format_number(newton.tolerance, 10)},
+                                 {"newton_max_iter", std::to_string(newton.max_iterations)}});
   if (result.steps > 0)
     std::printf("  Newton iterations per step: %.3f (%lld in %lld steps), %lld factorizations\n",
                 static_cast<double>(result.counters.newton_iterations) / static_cast<double>(result.steps),
@@ -87,8 +90,8 @@ std::vector<double> stiff_step_residuals(const SceneParams& report_scene) {
 
 // residuals.dat for the figure (iteration k, |r_k|, |r_k| / |r_{k-1}|^2), and the page's table of the same.
 void write_stiff_step(const std::vector<double>& r, const std::string& dir, const std::string& command) {
-  std::FILE* out = std::fopen((dir + "/residuals.dat").c_str(), "w");
-  if (!out) throw InputError("--out: cannot write " + dir + "/residuals.dat");
+  OutputFile file(dir + "/residuals.dat");
+  std::FILE* out = file.get();
   std::fprintf(out, "# first step of the report scene, K = 1e5, D = 0, h = 0.01, exact Jacobian, LU\n");
   std::fprintf(out, "# k |r_k|_inf |r_k|/|r_(k-1)|^2\n");
   std::printf("stiff step (K = 1e5, h = 0.01, exact Jacobian, LU): |r_k|_inf =");
@@ -97,7 +100,7 @@ void write_stiff_step(const std::vector<double>& r, const std::string& dir, cons
     std::printf(" %.3g", r[k]);
   }
   std::printf("\n");
-  std::fclose(out);
+  file.commit();
   // The table stops at the rounding floor: the first iterate that no later one improves tenfold. The iterates
   // after it only wander around the floor, and are summed up in one row.
   MarkdownTable table({"Newton iteration k", "residual r_k (max norm) [N s]", "r_k / r_(k-1)^2"}, "rrr");
@@ -118,10 +121,10 @@ void write_stiff_step(const std::vector<double>& r, const std::string& dir, cons
 
 // What one setting's Newton iterations came to, over the steps it took.
 struct IterationSummary {
-  std::string solver;           // the linear solver the setting resolved to
-  long long accepted = 0;       // steps accepted
-  long long iterations = 0;     // Newton iterations in the accepted steps
-  long long most = 0;           // most iterations in one accepted step
+  std::string solver;                  // the linear solver the setting resolved to
+  long long accepted = 0;              // steps accepted
+  long long iterations = 0;            // Newton iterations in the accepted steps
+  long long most = 0;                  // most iterations in one accepted step
   std::optional<std::string> failure;  // the failed step, when one failed
 };
 
@@ -133,23 +136,22 @@ IterationSummary iterations_per_step(const SceneParams& params, const RunSetting
   ForceField field(scene);
   ImplicitEuler stepper(field, newton);
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
-  std::FILE* out = std::fopen(path.c_str(), "w");
-  if (!out) throw InputError("--out: cannot write " + path);
+  OutputFile file(path);
+  std::FILE* out = file.get();
   std::fprintf(out, "# t newton_iterations final_residual (K = %g, D = %g, h = %g, jacobian %s)\n", params.stiffness,
                params.damping, run.dt, treatment_name(newton.treatment));
   IterationSummary summary;
   summary.solver = linear_solver_name(stepper.settings().solver);
   const auto steps = std::llround(run.t_end / run.dt);
-  for (long long n = 1; n <= steps; ++n) {
+  for (long long n = 1; n <= steps && interrupt_signal() == 0; ++n) {
     const long long before = stepper.counters().newton_iterations;
     const bool ok = stepper.step(run.dt, x, v);
     const long long iterations = stepper.counters().newton_iterations - before;
-    std::fprintf(out, "%.10g %lld %.6e\n", static_cast<double>(n) * run.dt, iterations,
-                 stepper.residual_history().back());
+    const double t = static_cast<double>(n) * run.dt;
+    std::fprintf(out, "%.10g %lld %.6e\n", t, iterations, stepper.residual_history().back());
     if (!ok) {
-      const double t = static_cast<double>(n) * run.dt;
-      summary.failure = "fails at step " + std::to_string(n) + ", t = " + format_number(t) +
-                        " s: " + std::to_string(iterations) + " iterations, residual " +
+      summary.failure = "fails at step " + std::to_string(n) + ", t = " + format_number(t) + " s: " +
+                        std::to_string(iterations) + " iterations, residual " +
                         format_number(stepper.residual_history().back(), 2);
       break;
     }
@@ -157,14 +159,47 @@ IterationSummary iterations_per_step(const SceneParams& params, const RunSetting
     summary.iterations += iterations;
     summary.most = std::max(summary.most, iterations);
   }
-  std::fclose(out);
+  file.commit();  // whole up to the last step taken, when interrupted too
+  throw_if_interrupted();
   return summary;
+}
+
+// The report's three (K, D), each run with full Newton and with one iteration, in subfolders of --out.
+struct Config {
+  double K, D;
+};
+constexpr Config report_configs[] = {{50, 0}, {200, 0}, {200, 20}};
+
+std::string report_folder(const char* variant, const Config& c) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s_K%g_D%g", variant, c.K, c.D);
+  return name;
+}
+
+// The single runs behind the page's other measurements, each in a subfolder: the definite matrix's failure, the
+// stiff cloth at a large step, and conjugate gradients.
+const char* const measured_run_folders[] = {"definite_K50_D0", "stiff_K100000_h0.1", "cg_K50_D0"};
+
+std::vector<std::string> report_outputs() {
+  std::vector<std::string> names = {"comparison.dat", "residuals.dat", "iterations_symmetric.dat",
+                                    "iterations_definite.dat", "iterations_symmetric_K200_D20.dat",
+                                    "iterations_exact_K200_D20.dat"};
+  // The page's tables, sentences and transcript (program/fragment.hpp).
+  for (const char* fragment : {"report_runs.md", "stiff_step.md", "jacobian_treatments.md", "definite_failure.txt",
+                               "stiff_large_step.md", "cg_run.md", "rk4_agreement.md", "rk4_halving_ratio.md"})
+    names.emplace_back(fragment);
+  for (const Config& c : report_configs)
+    for (const char* variant : {"full", "one"})
+      for (const std::string& file : run_output_names()) names.push_back(report_folder(variant, c) + "/" + file);
+  for (const char* folder : measured_run_folders)
+    for (const std::string& file : run_output_names()) names.push_back(std::string(folder) + "/" + file);
+  return names;
 }
 
 // What the Newton matrix's treatment costs: the exact (= symmetric) Hessian against the definite matrix on the
 // undamped report scene, and the exact Jacobian against the symmetric one with damping.
-void treatments_table(const Options& opt, const IterationSummary& sym, const IterationSummary& def,
-                      const std::string& dir, const std::string& command) {
+void treatments_table(const Options& opt, const NewtonSettings& newton, const IterationSummary& sym,
+                      const IterationSummary& def, const std::string& dir, const std::string& command) {
   MarkdownTable table({"K, D", "Jacobian", "solver", "Newton iterations per step", "most in one step", "outcome"},
                       "llrrrl");
   const auto add = [&](const std::string& KD, const std::string& jacobian, const IterationSummary& s) {
@@ -177,7 +212,9 @@ void treatments_table(const Options& opt, const IterationSummary& sym, const Ite
   SceneParams damped = opt.scene;
   damped.stiffness = 200;
   damped.damping = 20;
-  NewtonSettings exact, symmetric;
+  NewtonSettings exact = newton, symmetric = newton;  // each with the solver its matrix calls for
+  exact.solver = symmetric.solver = LinearSolverKind::automatic;
+  exact.treatment = StiffnessTreatment::exact;
   symmetric.treatment = StiffnessTreatment::symmetric;
   add("200, 20", "symmetric",
       iterations_per_step(damped, opt.run, symmetric, dir + "/iterations_symmetric_K200_D20.dat"));
@@ -186,24 +223,31 @@ void treatments_table(const Options& opt, const IterationSummary& sym, const Ite
 }
 
 // The run a reader gets with `--jacobian definite`, and what it prints when its Newton iteration stalls.
-void definite_failure_transcript(const SceneParams& params, const RunSettings& run, const NewtonSettings& definite,
-                                 const std::string& dir, const std::string& program) {
-  const Outcome o = run_cloth(params, run, definite, dir + "/definite_K50_D0", program);
+int definite_failure_transcript(const SceneParams& params, const RunSettings& run, const NewtonSettings& definite,
+                                const std::string& dir, const std::string& program) {
+  const Outcome o = run_cloth(params, run, definite, dir + "/" + measured_run_folders[0], program);
+  if (o.status >= 128) return o.status;
   std::string text = "$ build/bin/" + program + " --jacobian definite\n";
   if (o.status != 0) text += program + ": " + o.method + " " + o.result.message + "\n";
   write_text_fragment(dir + "/definite_failure.txt", text + "$ echo $?\n" + std::to_string(o.status) + "\n");
+  return 0;
 }
 
 // Numbers the page quotes in its prose, each in a sentence of its own (Doxygen includes a file as a separate
 // word, so the page includes each at the end of a line): the stiff cloth at a large step, which the line search
 // makes possible, and conjugate gradients on the report scene.
-void measured_sentences(const Options& opt, const std::string& dir, const std::string& program) {
+int measured_sentences(const Options& opt, const NewtonSettings& newton, const std::string& dir,
+                       const std::string& program) {
   SceneParams stiff = opt.scene;
   stiff.stiffness = 1e5;
   stiff.damping = 0;
   RunSettings large_step = opt.run;
   large_step.dt = 0.1;
-  const Outcome a = run_cloth(stiff, large_step, NewtonSettings{}, dir + "/stiff_K100000_h0.1", program);
+  NewtonSettings exact = newton;
+  exact.solver = LinearSolverKind::automatic;
+  exact.treatment = StiffnessTreatment::exact;
+  const Outcome a = run_cloth(stiff, large_step, exact, dir + "/" + measured_run_folders[1], program);
+  if (a.status >= 128) return a.status;
   write_text_fragment(dir + "/stiff_large_step.md",
                       "At h = " + format_number(large_step.dt) + " s it takes " + std::to_string(a.result.steps) +
                           " steps to t = " + format_number(a.result.t) + " s, with " +
@@ -213,25 +257,27 @@ void measured_sentences(const Options& opt, const std::string& dir, const std::s
   report_scene.damping = 0;
   RunSettings short_run = opt.run;
   short_run.t_end = 0.3;
-  NewtonSettings cg;
+  NewtonSettings cg = newton;
   cg.solver = LinearSolverKind::cg;
   cg.treatment = StiffnessTreatment::definite;
-  const Outcome b = run_cloth(report_scene, short_run, cg, dir + "/cg_K50_D0", program);
+  const Outcome b = run_cloth(report_scene, short_run, cg, dir + "/" + measured_run_folders[2], program);
+  if (b.status >= 128) return b.status;
   const StepCounters& n = b.result.counters;
-  const double cg_per_solve = static_cast<double>(n.cg_iterations) / static_cast<double>(n.newton_iterations);
+  const double cg_per_solve =
+      n.newton_iterations ? static_cast<double>(n.cg_iterations) / static_cast<double>(n.newton_iterations) : 0.0;
   write_text_fragment(dir + "/cg_run.md",
                       "On the report scene (K = 50, D = 0) its " + std::to_string(b.result.steps) + " steps to t = " +
                           format_number(b.result.t) + " s took " + format_number(iterations_per_step_of(b.result), 2) +
-                          " Newton iterations per step and " +
-                          format_number(cg_per_solve, 2) +
+                          " Newton iterations per step and " + format_number(cg_per_solve, 2) +
                           " CG iterations per solve, " + std::to_string(n.cg_iterations) + " in all.");
+  return 0;
 }
 
 // Implicit Euler against RK4 on the damped report scene (K = 200, D = 20) to t = 1 s: RK4 at h = 1e-3 is the
 // reference (its own error, estimated from RK4 at h/2, is far smaller), and implicit Euler's distance from it
 // should halve with h, the method being of first order. Distances are max norms over all coordinates.
-void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const std::string& dir,
-                        const std::string& command) {
+void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const NewtonSettings& newton,
+                        const std::string& dir, const std::string& command) {
   SceneParams p = report_scene;
   p.stiffness = 200;
   p.damping = 20;
@@ -241,6 +287,7 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
   const auto run_with = [&](Stepper& stepper, double h) {
     run.dt = h;
     RunResult r = simulate(stepper, run, false);
+    throw_if_interrupted();
     if (r.status != RunStatus::ok) throw std::runtime_error(stepper.name() + " " + r.message);
     return r;
   };
@@ -250,9 +297,12 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
   const RunResult rk4_half = run_with(rk4, steps[1]);
   MarkdownTable table({"K = 200, D = 20, to t = 1 s", "largest position difference from RK4 at h = 0.001 [m]",
                        "Newton iterations per step"}, "lrr");
+  NewtonSettings exact = newton;
+  exact.solver = LinearSolverKind::automatic;
+  exact.treatment = StiffnessTreatment::exact;
   double distance[2];
   for (int k = 0; k < 2; ++k) {
-    ImplicitEuler implicit(field, NewtonSettings{});
+    ImplicitEuler implicit(field, exact);
     const RunResult r = run_with(implicit, steps[k]);
     distance[k] = (r.x - reference.x).lpNorm<Eigen::Infinity>();
     table.add_row({"implicit Euler, h = " + format_number(steps[k]), format_number(distance[k], 3),
@@ -267,34 +317,29 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
 
 // The report's three (K, D) with full Newton and with one Newton iteration, the stiff step's residuals, and the
 // definite (Choi & Ko) matrix against the symmetric one at K = 50.
-void report_runs(const Options& opt, const NewtonSettings& newton, const std::string& program,
-                 const std::string& command) {
+// `newton_for(K, D)` gives the settings of the full-Newton run at (K, D), as main checked them before any run.
+int report_runs(const Options& opt, const std::function<NewtonSettings(double, double)>& newton_for,
+                const NewtonSettings& newton, const std::string& program, const std::string& command) {
   const std::string dir = opt.run.out_dir;
-  prepare_output_dir(dir);
-  struct Config {
-    double K, D;
-  };
-  const Config configs[] = {{50, 0}, {200, 0}, {200, 20}};
-  std::FILE* summary = std::fopen((dir + "/comparison.dat").c_str(), "w");
-  if (!summary) throw InputError("--out: cannot write " + dir + "/comparison.dat");
+  OutputFile summary_file(dir + "/comparison.dat");
+  std::FILE* summary = summary_file.get();
   std::fprintf(summary, "# K D newton_per_step_full newton_per_step_one factorizations_full factorizations_one "
                         "wall_full wall_one E_final_full E_final_one max_position_difference\n");
   MarkdownTable table({"K, D", "Newton iterations per step, full", "factorizations full / one", "E(2 s) full [J]",
                        "E(2 s) one iteration [J]", "energy lost by 2 s, full",
                        "largest position difference at 2 s [m]"},
                       "lrrrrrr");
-  for (const Config& c : configs) {
+  for (const Config& c : report_configs) {
     SceneParams p = opt.scene;
     p.stiffness = c.K;
     p.damping = c.D;
-    char name[64];
-    std::snprintf(name, sizeof name, "/full_K%g_D%g", c.K, c.D);
-    NewtonSettings full = newton;
-    const Outcome a = run_cloth(p, opt.run, full, dir + name, program);
-    std::snprintf(name, sizeof name, "/one_K%g_D%g", c.K, c.D);
-    NewtonSettings one = newton;
+    const NewtonSettings full = newton_for(c.K, c.D);
+    const Outcome a = run_cloth(p, opt.run, full, dir + "/" + report_folder("full", c), program);
+    if (a.status >= 128) return a.status;  // interrupted: the run said so; comparison.dat is not written
+    NewtonSettings one = full;
     one.max_iterations = 1;
-    const Outcome b = run_cloth(p, opt.run, one, dir + name, program);
+    const Outcome b = run_cloth(p, opt.run, one, dir + "/" + report_folder("one", c), program);
+    if (b.status >= 128) return b.status;
     const double diff = a.result.t == b.result.t ? (a.result.x - b.result.x).lpNorm<Eigen::Infinity>() : NAN;
     const auto per_step = [](const RunResult& r) {
       return r.steps ? static_cast<double>(r.counters.newton_iterations) / static_cast<double>(r.steps) : 0.0;
@@ -312,9 +357,10 @@ void report_runs(const Options& opt, const NewtonSettings& newton, const std::st
                    format_fixed(E_full, 2), format_fixed(b.result.energy.back().energy.total(), 2),
                    format_number(100 * (E0 - E_full) / E0, 2) + "%", format_number(diff, 2)});
   }
-  std::fclose(summary);
+  summary_file.commit();
   write_table_fragment(dir + "/report_runs.md", table, command);
   write_stiff_step(stiff_step_residuals(opt.scene), dir, command);
+  throw_if_interrupted();
   SceneParams p = opt.scene;
   p.stiffness = 50;
   p.damping = 0;
@@ -323,11 +369,23 @@ void report_runs(const Options& opt, const NewtonSettings& newton, const std::st
   definite.treatment = StiffnessTreatment::definite;
   const IterationSummary sym = iterations_per_step(p, opt.run, symmetric, dir + "/iterations_symmetric.dat");
   const IterationSummary def = iterations_per_step(p, opt.run, definite, dir + "/iterations_definite.dat");
-  treatments_table(opt, sym, def, dir, command);
-  definite_failure_transcript(p, opt.run, definite, dir, program);
-  measured_sentences(opt, dir, program);
-  agreement_with_rk4(opt.scene, opt.run, dir, command);
+  treatments_table(opt, newton, sym, def, dir, command);
+  if (const int status = definite_failure_transcript(p, opt.run, definite, dir, program)) return status;
+  if (const int status = measured_sentences(opt, newton, dir, program)) return status;
+  agreement_with_rk4(opt.scene, opt.run, newton, dir, command);
+  return 0;
 }
+
+// [jacobian_default]
+// Without --jacobian, the most exact matrix the chosen solver can take: CG needs a symmetric positive definite
+// matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry), LDU and LU take the exact one. An explicit
+// incompatible choice is refused by validate(NewtonSettings) with exit status 2.
+StiffnessTreatment default_treatment(LinearSolverKind solver, bool damped) {
+  if (solver == LinearSolverKind::cg) return StiffnessTreatment::definite;
+  if (solver == LinearSolverKind::ldlt && damped) return StiffnessTreatment::symmetric;
+  return StiffnessTreatment::exact;
+}
+// [jacobian_default]
 
 }  // namespace
 
@@ -376,21 +434,41 @@ int main(int argc, char** argv) {
                  [&] { want_report_runs = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    // [jacobian_default]
-    // Without --jacobian, the most exact matrix the chosen solver can take: CG needs a symmetric positive
-    // definite matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry), LDU and LU take the exact one.
-    // An explicit incompatible choice is refused by validate(NewtonSettings) with exit status 2.
-    const bool damped = Scene(opt.scene).has_damping();
-    if (jacobian) newton.treatment = *jacobian;
-    else if (newton.solver == LinearSolverKind::cg) newton.treatment = StiffnessTreatment::definite;
-    else if (newton.solver == LinearSolverKind::ldlt && damped) newton.treatment = StiffnessTreatment::symmetric;
-    else newton.treatment = StiffnessTreatment::exact;
-    // [jacobian_default]
-    if (want_report_runs) {
-      validate(newton, Scene(opt.scene));
-      report_runs(opt, newton, cli.program(), reader_command(argc, argv));
-      return 0;
+    const auto particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
+    // The settings of a run at (K, D): the Newton matrix the solver takes unless --jacobian chose one.
+    const auto newton_for = [&](double K, double D) {
+      SceneParams p = opt.scene;
+      p.stiffness = K;
+      p.damping = D;
+      NewtonSettings s = newton;
+      s.treatment = jacobian ? *jacobian : default_treatment(newton.solver, Scene(p).has_damping());
+      validate(s, Scene(p));
+      return s;
+    };
+    if (!want_report_runs) {
+      const NewtonSettings settings = newton_for(opt.scene.stiffness, opt.scene.damping);
+      require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles));
+      prepare_outputs(opt.run.out_dir, run_output_names(), report_outputs());
+      return run_cloth(opt.scene, opt.run, settings, opt.run.out_dir, cli.program()).status;
     }
-    return run_cloth(opt.scene, opt.run, newton, opt.run.out_dir, cli.program()).status;
+    // Every run of --report-runs is checked, with the values it uses, before the first one starts.
+    for (const Config& c : report_configs) {
+      SceneParams p = opt.scene;
+      p.stiffness = c.K;
+      p.damping = c.D;
+      try {
+        newton_for(c.K, c.D);
+      } catch (const InputError& e) {
+        throw InputError(std::string(e.what()) + " (--report-runs runs K = " + format_number(c.K) +
+                         ", D = " + format_number(c.D) + ")");
+      }
+      require_representable(p, opt.run);
+    }
+    if (newton.solver == LinearSolverKind::cg)
+      throw InputError("--linear-solver cg: --report-runs compares the symmetric and the definite Newton matrix, and "
+                       "cg takes only the definite one: expected ldlt, ldu or lu");
+    require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles), "--frames", 2);
+    prepare_outputs(opt.run.out_dir, report_outputs(), run_output_names());
+    return report_runs(opt, newton_for, newton, cli.program(), reader_command(argc, argv));
   });
 }

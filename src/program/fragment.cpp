@@ -1,4 +1,5 @@
 // Fragments are written like every other output (program/output.hpp): under a temporary name, renamed when whole.
+// A program declares them with its other outputs (prepare_outputs) before it runs.
 #include "program/fragment.hpp"
 
 #include "program/build_info.hpp"
@@ -63,11 +64,7 @@ void write_table_fragment(const std::string& path, const MarkdownTable& table, c
                                 vector_instructions() + "), on " + processor_description() + ".</div>\n");
 }
 
-void write_text_fragment(const std::string& path, const std::string& text) {
-  OutputFile file(path);
-  std::fputs(text.c_str(), file.get());
-  file.commit();
-}
+void write_text_fragment(const std::string& path, const std::string& text) { write_text(path, text); }
 
 std::string reader_command(int argc, const char* const* argv) {
   std::string program = argc > 0 ? argv[0] : "";

@@ -2,6 +2,8 @@
 // Markdown files into its output folder. The chapter's page includes them when the book is built
 // (`\include{doc} ch04_implicit_euler/report_runs.md`; Doxygen's EXAMPLE_PATH holds build/plots/data), so the
 // book quotes exactly what the program measured, the way Eigen's documentation shows its examples' real output.
+// A fragment is an output like any other: the program lists it in prepare_outputs() before it runs, and the
+// chapter's cloth_add_plot() lists it under FRAGMENTS, so that the book's build fails when it is not written.
 #pragma once
 
 #include <string>
