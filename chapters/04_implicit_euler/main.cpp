@@ -16,13 +16,15 @@ using namespace cloth;
 
 namespace {
 
-const char* treatment_name(StiffnessTreatment t) {
-  switch (t) {
-    case StiffnessTreatment::exact: return "exact";
-    case StiffnessTreatment::symmetric: return "symmetric";
-    case StiffnessTreatment::definite: return "definite";
+// validate(NewtonSettings) with its message prefixed by the flags that chose the settings it names.
+void check_settings(const NewtonSettings& newton, const Scene& scene) {
+  try {
+    validate(newton, scene);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--newton ") + newton_variants().name(newton.variant) + " --linear-solver " +
+                     linear_solvers().name(newton.solver) + " --jacobian " +
+                     stiffness_treatments().name(newton.treatment) + ": " + e.what());
   }
-  return "?";
 }
 
 struct Outcome {
@@ -34,15 +36,16 @@ struct Outcome {
 Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettings& newton, const std::string& dir,
                   const std::string& program) {
   const Scene scene(params);
-  validate(newton, scene);  // before anything is written
+  check_settings(newton, scene);  // before anything is written
   ForceField field(scene);
   ImplicitEuler stepper(field, newton);  // resolves the automatic solver choice
   run.out_dir = dir;
   prepare_output_dir(dir);
   RunResult result = simulate(stepper, run);
   write_outputs(result, stepper, run,
-                {{"linear_solver", linear_solver_name(stepper.settings().solver)},
-                 {"jacobian", treatment_name(newton.treatment)},
+                {{"newton", newton_variants().name(newton.variant)},
+                 {"linear_solver", linear_solvers().name(stepper.settings().solver)},
+                 {"jacobian", stiffness_treatments().name(newton.treatment)},
                  {"newton_tol", format_number(newton.tolerance, 10)},
                  {"newton_max_iter", std::to_string(newton.max_iterations)}});
   const int status = report(result, stepper, program);
@@ -97,7 +100,7 @@ void iterations_per_step(const SceneParams& params, const RunSettings& run, cons
   std::FILE* out = std::fopen(path.c_str(), "w");
   if (!out) throw InputError("--out: cannot write " + path);
   std::fprintf(out, "# t newton_iterations final_residual (K = %g, D = %g, h = %g, jacobian %s)\n", params.stiffness,
-               params.damping, run.dt, treatment_name(newton.treatment));
+               params.damping, run.dt, stiffness_treatments().name(newton.treatment));
   const auto steps = std::llround(run.t_end / run.dt);
   for (long long n = 1; n <= steps; ++n) {
     const long long before = stepper.counters().newton_iterations;
@@ -132,7 +135,7 @@ void report_runs(const Options& opt, const NewtonSettings& newton, const std::st
     const Outcome a = run_cloth(p, opt.run, full, dir + name, program);
     std::snprintf(name, sizeof name, "/one_K%g_D%g", c.K, c.D);
     NewtonSettings one = newton;
-    one.max_iterations = 1;
+    one.variant = NewtonVariant::one;
     const Outcome b = run_cloth(p, opt.run, one, dir + name, program);
     const double diff = a.result.t == b.result.t ? (a.result.x - b.result.x).lpNorm<Eigen::Infinity>() : NAN;
     const auto per_step = [](const RunResult& r) {
@@ -166,16 +169,13 @@ int main(int argc, char** argv) {
   CommandLine cli("ch04_implicit_euler",
                   "Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the\n"
                   "analytic sparse Jacobian J = M - h df/dv - h^2 df/dx.");
-  cli.add_value("--linear-solver", "ldlt|ldu|cg|lu",
-                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, or Eigen's pivoting sparse LU (default: ldu "
-                "for the exact Jacobian of a damped cloth, ldlt otherwise)",
-                [&](const std::string& s) {
-                  if (s == "ldlt") newton.solver = LinearSolverKind::ldlt;
-                  else if (s == "ldu") newton.solver = LinearSolverKind::ldu;
-                  else if (s == "cg") newton.solver = LinearSolverKind::cg;
-                  else if (s == "lu") newton.solver = LinearSolverKind::lu;
-                  else throw InputError("unknown solver '" + s + "': expected ldlt, ldu, cg or lu");
-                });
+  cli.add_value("--newton", newton_variants().accepted("|"),
+                "full Newton (default), modified (not implemented yet), or one: Baraff & Witkin's single linearised "
+                "step", [&](const std::string& s) { newton.variant = newton_variants().parse(s); });
+  cli.add_value("--linear-solver", linear_solvers().accepted("|"),
+                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, Eigen's pivoting sparse LU, or automatic "
+                "(the default: ldu for the exact Jacobian of a damped cloth, ldlt otherwise)",
+                [&](const std::string& s) { newton.solver = linear_solvers().parse(s); });
   cli.add_value("--newton-tol", "TOL", "Newton's stopping tolerance on |dv| and |r| (default 1e-8)",
                 [&](const std::string& s) {
                   const double t = parse_number(s);
@@ -183,21 +183,16 @@ int main(int argc, char** argv) {
                   newton.tolerance = t;
                 });
   cli.add_value("--newton-max-iter", "N",
-                "Newton iterations before a step fails (default 20); 1 is Baraff & Witkin's one-iteration step",
+                "full Newton's iterations before a step fails (default 20)",
                 [&](const std::string& s) {
                   const long long n = parse_integer(s);
                   if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
                   newton.max_iterations = static_cast<int>(n);
                 });
-  cli.add_value("--jacobian", "exact|symmetric|definite",
+  cli.add_value("--jacobian", stiffness_treatments().accepted("|"),
                 "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
                 "(Choi & Ko 2002; the default with cg)",
-                [&](const std::string& s) {
-                  if (s == "exact") jacobian = StiffnessTreatment::exact;
-                  else if (s == "symmetric") jacobian = StiffnessTreatment::symmetric;
-                  else if (s == "definite") jacobian = StiffnessTreatment::definite;
-                  else throw InputError("unknown Jacobian '" + s + "': expected exact, symmetric or definite");
-                });
+                [&](const std::string& s) { jacobian = stiffness_treatments().parse(s); });
   cli.add_switch("--report-runs",
                  "the report's (K, D) = (50,0), (200,0), (200,20) with full and one-iteration Newton, a stiff step's "
                  "residuals and the definite matrix at K = 50 (the chapter's figures; exit 0 even when a run fails)",
@@ -215,7 +210,7 @@ int main(int argc, char** argv) {
     else newton.treatment = StiffnessTreatment::exact;
     // [jacobian_default]
     if (want_report_runs) {
-      validate(newton, Scene(opt.scene));
+      check_settings(newton, Scene(opt.scene));
       report_runs(opt, newton, cli.program());
       return 0;
     }
