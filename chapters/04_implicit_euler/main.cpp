@@ -3,9 +3,9 @@
 #include "program/command_line.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/butcher_tableau.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/implicit_euler.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,13 +27,15 @@ using namespace cloth;
 
 namespace {
 
-const char* treatment_name(StiffnessTreatment t) {
-  switch (t) {
-    case StiffnessTreatment::exact: return "exact";
-    case StiffnessTreatment::symmetric: return "symmetric";
-    case StiffnessTreatment::definite: return "definite";
+// validate(NewtonSettings) with its message prefixed by the flags that chose the settings it names.
+void check_settings(const NewtonSettings& newton, const Scene& scene) {
+  try {
+    validate(newton, scene);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--newton ") + newton_variants().name(newton.variant) + " --linear-solver " +
+                     linear_solvers().name(newton.solver) + " --jacobian " +
+                     stiffness_treatments().name(newton.treatment) + ": " + e.what());
   }
-  return "?";
 }
 
 struct Outcome {
@@ -55,8 +58,9 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
   run.progress = terminal_progress(program);
   RunResult result = simulate(stepper, run);
   const int status = finish_run(result, stepper, run, program,
-                                {{"linear_solver", linear_solver_name(stepper.settings().solver)},
-                                 {"jacobian", treatment_name(newton.treatment)},
+                                {{"newton", newton_variants().name(newton.variant)},
+                                 {"linear_solver", linear_solvers().name(stepper.settings().solver)},
+                                 {"jacobian", stiffness_treatments().name(newton.treatment)},
                                  {"newton_tol", format_number(newton.tolerance, 10)},
                                  {"newton_max_iter", std::to_string(newton.max_iterations)}});
   if (result.steps > 0)
@@ -139,9 +143,9 @@ IterationSummary iterations_per_step(const SceneParams& params, const RunSetting
   OutputFile file(path);
   std::FILE* out = file.get();
   std::fprintf(out, "# t newton_iterations final_residual (K = %g, D = %g, h = %g, jacobian %s)\n", params.stiffness,
-               params.damping, run.dt, treatment_name(newton.treatment));
+               params.damping, run.dt, stiffness_treatments().name(newton.treatment));
   IterationSummary summary;
-  summary.solver = linear_solver_name(stepper.settings().solver);
+  summary.solver = linear_solvers().name(stepper.settings().solver);
   const auto steps = std::llround(run.t_end / run.dt);
   for (long long n = 1; n <= steps && interrupt_signal() == 0; ++n) {
     const long long before = stepper.counters().newton_iterations;
@@ -214,6 +218,7 @@ void treatments_table(const Options& opt, const NewtonSettings& newton, const It
   damped.damping = 20;
   NewtonSettings exact = newton, symmetric = newton;  // each with the solver its matrix calls for
   exact.solver = symmetric.solver = LinearSolverKind::automatic;
+  exact.variant = symmetric.variant = NewtonVariant::full;
   exact.treatment = StiffnessTreatment::exact;
   symmetric.treatment = StiffnessTreatment::symmetric;
   add("200, 20", "symmetric",
@@ -246,6 +251,7 @@ int measured_sentences(const Options& opt, const NewtonSettings& newton, const s
   NewtonSettings exact = newton;
   exact.solver = LinearSolverKind::automatic;
   exact.treatment = StiffnessTreatment::exact;
+  exact.variant = NewtonVariant::full;
   const Outcome a = run_cloth(stiff, large_step, exact, dir + "/" + measured_run_folders[1], program);
   if (a.status >= 128) return a.status;
   write_text_fragment(dir + "/stiff_large_step.md",
@@ -260,6 +266,7 @@ int measured_sentences(const Options& opt, const NewtonSettings& newton, const s
   NewtonSettings cg = newton;
   cg.solver = LinearSolverKind::cg;
   cg.treatment = StiffnessTreatment::definite;
+  cg.variant = NewtonVariant::full;
   const Outcome b = run_cloth(report_scene, short_run, cg, dir + "/" + measured_run_folders[2], program);
   if (b.status >= 128) return b.status;
   const StepCounters& n = b.result.counters;
@@ -291,7 +298,7 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
     if (r.status != RunStatus::ok) throw std::runtime_error(stepper.name() + " " + r.message);
     return r;
   };
-  ExplicitRungeKutta rk4(field, tableau_from_argument("rk4"));
+  ExplicitRungeKutta rk4(field, *find_method("rk4").tableau);
   const double steps[2] = {1e-3, 5e-4};
   const RunResult reference = run_with(rk4, steps[0]);
   const RunResult rk4_half = run_with(rk4, steps[1]);
@@ -300,6 +307,7 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
   NewtonSettings exact = newton;
   exact.solver = LinearSolverKind::automatic;
   exact.treatment = StiffnessTreatment::exact;
+  exact.variant = NewtonVariant::full;
   double distance[2];
   for (int k = 0; k < 2; ++k) {
     ImplicitEuler implicit(field, exact);
@@ -337,7 +345,7 @@ int report_runs(const Options& opt, const std::function<NewtonSettings(double, d
     const Outcome a = run_cloth(p, opt.run, full, dir + "/" + report_folder("full", c), program);
     if (a.status >= 128) return a.status;  // interrupted: the run said so; comparison.dat is not written
     NewtonSettings one = full;
-    one.max_iterations = 1;
+    one.variant = NewtonVariant::one;
     const Outcome b = run_cloth(p, opt.run, one, dir + "/" + report_folder("one", c), program);
     if (b.status >= 128) return b.status;
     const double diff = a.result.t == b.result.t ? (a.result.x - b.result.x).lpNorm<Eigen::Infinity>() : NAN;
@@ -396,16 +404,13 @@ int main(int argc, char** argv) {
   CommandLine cli("ch04_implicit_euler",
                   "Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the\n"
                   "analytic sparse Jacobian J = M - h df/dv - h^2 df/dx.");
-  cli.add_value("--linear-solver", "ldlt|ldu|cg|lu",
-                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, or Eigen's pivoting sparse LU (default: ldu "
-                "for the exact Jacobian of a damped cloth, ldlt otherwise)",
-                [&](const std::string& s) {
-                  if (s == "ldlt") newton.solver = LinearSolverKind::ldlt;
-                  else if (s == "ldu") newton.solver = LinearSolverKind::ldu;
-                  else if (s == "cg") newton.solver = LinearSolverKind::cg;
-                  else if (s == "lu") newton.solver = LinearSolverKind::lu;
-                  else throw InputError("unknown solver '" + s + "': expected ldlt, ldu, cg or lu");
-                });
+  cli.add_value("--newton", newton_variants().accepted("|"),
+                "full Newton (default), modified (not implemented yet), or one: Baraff & Witkin's single linearised "
+                "step", [&](const std::string& s) { newton.variant = newton_variants().parse(s); });
+  cli.add_value("--linear-solver", linear_solvers().accepted("|"),
+                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, Eigen's pivoting sparse LU, or automatic "
+                "(the default: ldu for the exact Jacobian of a damped cloth, ldlt otherwise)",
+                [&](const std::string& s) { newton.solver = linear_solvers().parse(s); });
   cli.add_value("--newton-tol", "TOL", "Newton's stopping tolerance on |dv| and |r| (default 1e-8)",
                 [&](const std::string& s) {
                   const double t = parse_number(s);
@@ -413,21 +418,16 @@ int main(int argc, char** argv) {
                   newton.tolerance = t;
                 });
   cli.add_value("--newton-max-iter", "N",
-                "Newton iterations before a step fails (default 20); 1 is Baraff & Witkin's one-iteration step",
+                "full Newton's iterations before a step fails (default 20)",
                 [&](const std::string& s) {
                   const long long n = parse_integer(s);
                   if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
                   newton.max_iterations = static_cast<int>(n);
                 });
-  cli.add_value("--jacobian", "exact|symmetric|definite",
+  cli.add_value("--jacobian", stiffness_treatments().accepted("|"),
                 "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
                 "(Choi & Ko 2002; the default with cg)",
-                [&](const std::string& s) {
-                  if (s == "exact") jacobian = StiffnessTreatment::exact;
-                  else if (s == "symmetric") jacobian = StiffnessTreatment::symmetric;
-                  else if (s == "definite") jacobian = StiffnessTreatment::definite;
-                  else throw InputError("unknown Jacobian '" + s + "': expected exact, symmetric or definite");
-                });
+                [&](const std::string& s) { jacobian = stiffness_treatments().parse(s); });
   cli.add_switch("--report-runs",
                  "the report's (K, D) = (50,0), (200,0), (200,20) with full and one-iteration Newton, a stiff step's "
                  "residuals and the definite matrix at K = 50 (the chapter's figures; exit 0 even when a run fails)",
@@ -442,7 +442,7 @@ int main(int argc, char** argv) {
       p.damping = D;
       NewtonSettings s = newton;
       s.treatment = jacobian ? *jacobian : default_treatment(newton.solver, Scene(p).has_damping());
-      validate(s, Scene(p));
+      check_settings(s, Scene(p));
       return s;
     };
     if (!want_report_runs) {
