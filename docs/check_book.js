@@ -14,7 +14,6 @@
   const problems = new Set();                  // "page: what is wrong", each reported once
   const anchors = new Map();                   // page -> Set of ids and names it defines
   const links = [];                            // {page, file, anchor}: every link that stays inside the book
-  const pageNames = new Set(config.pages);
   const rootPath = new URL(config.root).pathname;
   // A page must be loaded and typeset within this time, or it is reported as not finishing. The time is
   // virtual (check_book.sh runs Chromium with --virtual-time-budget), so idle waits cost nothing real.
@@ -144,9 +143,9 @@
     frame.style.width = config.widths[0] + "px";
     await load(frame, config.root + page);
     const win = frame.contentWindow, doc = frame.contentDocument;
-    // Doxygen writes a formula as \( ... \) or \[ ... \] for MathJax; a page without one (most of the API
-    // reference) need not wait for MathJax.
-    if (/\\[([]/.test(doc.body.textContent)) {
+    // Doxygen writes a formula as \( ... \) or \[ ... \] for MathJax, which replaces each with a
+    // <script type="math/tex"> as it typesets; a page with neither (most of the API reference) need not wait.
+    if (/\\[([]/.test(doc.body.textContent) || doc.querySelector('script[type^="math/tex"]')) {
       try {
         await mathjaxDone(win);
         checkFormulas(page, win, doc);
@@ -181,27 +180,34 @@
     }
   }
 
-  // Whether a file that is not one of the checked pages exists (an image, a data file, a script).
-  function fileExists(file) {
+  // A file that is not one of the checked pages (an image, a script, or a page left out of a partial check):
+  // null when it does not exist, else the anchors it defines if it is a page (as written, before any script ran).
+  function readTarget(file) {
     return new Promise(resolve => {
       const request = new XMLHttpRequest();
-      request.onload = () => resolve(true);
-      request.onerror = () => resolve(false);
+      request.onload = () => {
+        const ids = new Set();
+        if (/\.html$/.test(file)) {
+          const doc = new DOMParser().parseFromString(request.responseText, "text/html");
+          for (const element of doc.querySelectorAll("[id]")) ids.add(element.id);
+          for (const element of doc.querySelectorAll("a[name]")) ids.add(element.getAttribute("name"));
+        }
+        resolve(ids);
+      };
+      request.onerror = () => resolve(null);
       request.open("GET", config.root + file);
       request.send();
     });
   }
 
   async function checkLinks() {
-    const exists = new Map();
+    const targets = new Map(anchors);  // file -> its anchors, or null when it does not exist
     for (const link of links) {
-      if (pageNames.has(link.file)) {
-        if (link.anchor && !anchors.get(link.file).has(link.anchor))
-          report(link.page, "link '" + link.href + "': " + link.file + " has no anchor '" + link.anchor + "'");
-        continue;
-      }
-      if (!exists.has(link.file)) exists.set(link.file, await fileExists(link.file));
-      if (!exists.get(link.file)) report(link.page, "link '" + link.href + "': no such file");
+      if (!targets.has(link.file)) targets.set(link.file, await readTarget(link.file));
+      const ids = targets.get(link.file);
+      if (ids === null) report(link.page, "link '" + link.href + "': no such file");
+      else if (link.anchor && /\.html$/.test(link.file) && !ids.has(link.anchor))
+        report(link.page, "link '" + link.href + "': " + link.file + " has no anchor '" + link.anchor + "'");
     }
   }
 

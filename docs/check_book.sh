@@ -8,7 +8,7 @@
 #   docs/check_book.sh [HTML_DIR [PAGE.html ...]]
 #
 # HTML_DIR defaults to build/docs/html (`cmake --build build --target check_book` builds the book and runs this);
-# PAGEs restrict the check to those pages (links into the other pages then count as links to existing files).
+# PAGEs restrict the check to those pages (links into the other pages are checked against their HTML as written).
 #
 # CHROMIUM names the browser (default: chromium, Debian's package).
 set -euo pipefail
