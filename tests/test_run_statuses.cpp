@@ -15,6 +15,7 @@
 #include "program/run_outputs.hpp"
 #include "process.hpp"
 #include "program_runner.hpp"
+#include "small_disk.hpp"
 
 #include <doctest/doctest.h>
 
@@ -29,7 +30,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <sys/mount.h>
 #include <unistd.h>
 #include <vector>
 
@@ -80,29 +80,6 @@ std::pair<int, std::string> run_program_of(const std::function<int()>& body) {
   std::cerr.rdbuf(saved);
   return {status, captured.str()};
 }
-
-/// A small disk: a 64 KiB tmpfs mounted on a fresh folder, unmounted at scope exit. mounted() is false where the
-/// system does not let the tests mount one (not root, or no CAP_SYS_ADMIN in a container); why() says why.
-class SmallDisk {
- public:
-  SmallDisk() {
-    if (::mount("tmpfs", scratch_.path().c_str(), "tmpfs", 0, "size=64k") == 0) mounted_ = true;
-    else why_ = std::strerror(errno);
-  }
-  ~SmallDisk() {
-    if (mounted_) ::umount2(scratch_.path().c_str(), MNT_DETACH);
-  }
-  SmallDisk(const SmallDisk&) = delete;
-  SmallDisk& operator=(const SmallDisk&) = delete;
-  [[nodiscard]] bool mounted() const { return mounted_; }
-  [[nodiscard]] const std::string& why() const { return why_; }
-  [[nodiscard]] const fs::path& path() const { return scratch_.path(); }
-
- private:
-  ScratchDir scratch_;
-  bool mounted_ = false;
-  std::string why_;
-};
 
 }  // namespace
 
@@ -224,23 +201,6 @@ TEST_CASE("the progress line is drawn only on a terminal") {
   else MESSAGE("stderr is a terminal here: the progress callback exists, which the end-to-end test checks");
 }
 
-TEST_CASE("OutputFile: a folder that appears under the final name is a write error (exit 4), no file is left") {
-  ScratchDir scratch;
-  const fs::path path = scratch.path() / "run.txt";
-  std::string message;
-  try {
-    cloth::OutputFile f(path.string());
-    std::fputs("status = ok\n", f.get());
-    fs::create_directory(path);  // in the way only now, after the run started
-    f.commit();
-  } catch (const cloth::OutputError& e) {
-    message = e.what();
-  }
-  CHECK(message == "cannot write '" + path.string() + "': Is a directory");
-  CHECK(fs::is_directory(path));
-  CHECK(!fs::exists(scratch.path() / "run.txt.partial"));
-}
-
 TEST_CASE("prepare_outputs removes the stale outputs of other modes and nothing else; names leave no folder") {
   ScratchDir scratch;
   const fs::path out = scratch.path() / "out";
@@ -266,45 +226,6 @@ TEST_CASE("prepare_outputs removes the stale outputs of other modes and nothing 
   }
 }
 
-#ifdef __linux__
-TEST_CASE("a full disk (a 64 KiB tmpfs) is detected by every writer, naming the file and the reason") {
-  const SmallDisk disk;
-  if (!disk.mounted()) {
-    MESSAGE("skipped: mounting a 64 KiB tmpfs is not permitted here (" << disk.why() << ")");
-    return;
-  }
-  const std::vector<cloth::EnergySample> samples(3000, cloth::EnergySample{0.125, {1.0 / 3, -2.0 / 3, 1e-9}});
-  const std::string dir = disk.path().string() + "/";
-  const auto error_of = [](const std::function<void()>& write) {
-    try {
-      write();
-    } catch (const cloth::OutputError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
-  // Each writer alone on the empty disk, with more than 64 KiB to write; each leaves nothing behind.
-  CHECK(error_of([&] { cloth::write_energy(dir + "energy.dat", samples); }) ==
-        "cannot write '" + dir + "energy.dat': No space left on device");
-  cloth::SceneParams big;
-  big.grid = {60, 60, 0.1};  // 3600 lines of final.dat: more than 64 KiB even at rest
-  const cloth::Scene large(big);
-  cloth::Vector large_all(3 * large.particle_count());
-  large.all_positions(large.initial_positions(), large_all);
-  CHECK(error_of([&] {
-          cloth::write_frames(dir + "frames.dat", large.grid(), std::vector<cloth::Frame>(10, {0.0, large_all}));
-        }) == "cannot write '" + dir + "frames.dat': No space left on device");
-  CHECK(error_of([&] { cloth::write_text(dir + "big.txt", std::string(70000, 'x')); }) ==
-        "cannot write '" + dir + "big.txt': No space left on device");
-  CHECK(error_of([&] { cloth::write_final(dir + "final.dat", large, large.initial_positions(),
-                                          large.initial_velocities()); }) ==
-        "cannot write '" + dir + "final.dat': No space left on device");
-  std::vector<std::pair<std::string, std::string>> many(2000, {"key", std::string(40, 'v')});
-  CHECK(error_of([&] { cloth::write_key_values(dir + "run.txt", many); }) ==
-        "cannot write '" + dir + "run.txt': No space left on device");
-  CHECK(entry_count(disk.path()) == 0);
-}
-#endif
 
 #if defined(CLOTH_HAVE_CH01_SPRINGS) && defined(CLOTH_HAVE_CH02_EXPLICIT_EULER) && \
     defined(CLOTH_HAVE_CH03_RUNGE_KUTTA) && defined(CLOTH_HAVE_CH04_IMPLICIT_EULER)
