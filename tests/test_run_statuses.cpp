@@ -418,6 +418,36 @@ TEST_CASE("SIGINT and SIGTERM during a run: the run stops at the next step, keep
   }
 }
 
+TEST_CASE("a run longer than two seconds shows its progress on a terminal: steps, time spent, time left") {
+  const int terminal = ::posix_openpt(O_RDWR | O_NOCTTY);
+  REQUIRE(terminal >= 0);
+  REQUIRE(::grantpt(terminal) == 0);
+  REQUIRE(::unlockpt(terminal) == 0);
+  const fs::path screen = ::ptsname(terminal);
+  const ProgramFolder folder;
+  const Child child = spawn_chapter("ch02_explicit_euler",
+                                    {"--method", "symplectic", "--t-end", "1000", "--dt", "1e-3", "--out", "out"},
+                                    folder.cwd(), "", screen);
+  ::fcntl(terminal, F_SETFL, O_NONBLOCK);
+  std::string shown;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!contains(shown, " s left") && std::chrono::steady_clock::now() < deadline) {
+    char buffer[512];
+    const ssize_t n = ::read(terminal, buffer, sizeof buffer);
+    if (n > 0) shown.append(buffer, static_cast<std::size_t>(n));
+    else std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ::kill(child.pid, SIGINT);
+  CHECK(wait_for(child) == 130);
+  ::close(terminal);
+  CAPTURE(shown);
+  CHECK(contains(shown, "\rch02_explicit_euler: step "));
+  CHECK(contains(shown, " of 1000000 ("));
+  CHECK(contains(shown, " %), "));
+  CHECK(contains(shown, " s spent, about "));
+  CHECK(contains(shown, " s left"));
+}
+
 TEST_CASE("SIGTERM while frames.dat is written: every file whole, run.txt says interrupted, status 143") {
   const ProgramFolder folder;
   // 2001 frames of 1600 particles: frames.dat is 3.2 million lines, long enough to be signalled while written.
