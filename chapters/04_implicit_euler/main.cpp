@@ -22,13 +22,15 @@ using namespace cloth;
 
 namespace {
 
-const char* treatment_name(StiffnessTreatment t) {
-  switch (t) {
-    case StiffnessTreatment::exact: return "exact";
-    case StiffnessTreatment::symmetric: return "symmetric";
-    case StiffnessTreatment::definite: return "definite";
+// validate(NewtonSettings) with its message prefixed by the flags that chose the settings it names.
+void check_settings(const NewtonSettings& newton, const Scene& scene) {
+  try {
+    validate(newton, scene);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--newton ") + newton_variants().name(newton.variant) + " --linear-solver " +
+                     linear_solvers().name(newton.solver) + " --jacobian " +
+                     stiffness_treatments().name(newton.treatment) + ": " + e.what());
   }
-  return "?";
 }
 
 struct Outcome {
@@ -46,8 +48,9 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
   run.progress = terminal_progress(program);
   RunResult result = simulate(stepper, run);
   const int status = finish_run(result, stepper, run, program,
-                                {{"linear_solver", linear_solver_name(stepper.settings().solver)},
-                                 {"jacobian", treatment_name(newton.treatment)},
+                                {{"newton", newton_variants().name(newton.variant)},
+                                 {"linear_solver", linear_solvers().name(stepper.settings().solver)},
+                                 {"jacobian", stiffness_treatments().name(newton.treatment)},
                                  {"newton_tol", format_number(newton.tolerance, 10)},
                                  {"newton_max_iter", std::to_string(newton.max_iterations)}});
   if (result.steps > 0)
@@ -101,7 +104,7 @@ void iterations_per_step(const SceneParams& params, const RunSettings& run, cons
   OutputFile file(path);
   std::FILE* out = file.get();
   std::fprintf(out, "# t newton_iterations final_residual (K = %g, D = %g, h = %g, jacobian %s)\n", params.stiffness,
-               params.damping, run.dt, treatment_name(newton.treatment));
+               params.damping, run.dt, stiffness_treatments().name(newton.treatment));
   const auto steps = std::llround(run.t_end / run.dt);
   for (long long n = 1; n <= steps && interrupt_signal() == 0; ++n) {
     const long long before = stepper.counters().newton_iterations;
@@ -153,7 +156,7 @@ int report_runs(const Options& opt, const std::function<NewtonSettings(double, d
     const Outcome a = run_cloth(p, opt.run, full, dir + "/" + report_folder("full", c), program);
     if (a.status >= 128) return a.status;  // interrupted: the run said so; comparison.dat is not written
     NewtonSettings one = full;
-    one.max_iterations = 1;
+    one.variant = NewtonVariant::one;
     const Outcome b = run_cloth(p, opt.run, one, dir + "/" + report_folder("one", c), program);
     if (b.status >= 128) return b.status;
     const double diff = a.result.t == b.result.t ? (a.result.x - b.result.x).lpNorm<Eigen::Infinity>() : NAN;
@@ -201,16 +204,13 @@ int main(int argc, char** argv) {
   CommandLine cli("ch04_implicit_euler",
                   "Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the\n"
                   "analytic sparse Jacobian J = M - h df/dv - h^2 df/dx.");
-  cli.add_value("--linear-solver", "ldlt|ldu|cg|lu",
-                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, or Eigen's pivoting sparse LU (default: ldu "
-                "for the exact Jacobian of a damped cloth, ldlt otherwise)",
-                [&](const std::string& s) {
-                  if (s == "ldlt") newton.solver = LinearSolverKind::ldlt;
-                  else if (s == "ldu") newton.solver = LinearSolverKind::ldu;
-                  else if (s == "cg") newton.solver = LinearSolverKind::cg;
-                  else if (s == "lu") newton.solver = LinearSolverKind::lu;
-                  else throw InputError("unknown solver '" + s + "': expected ldlt, ldu, cg or lu");
-                });
+  cli.add_value("--newton", newton_variants().accepted("|"),
+                "full Newton (default), modified (not implemented yet), or one: Baraff & Witkin's single linearised "
+                "step", [&](const std::string& s) { newton.variant = newton_variants().parse(s); });
+  cli.add_value("--linear-solver", linear_solvers().accepted("|"),
+                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, Eigen's pivoting sparse LU, or automatic "
+                "(the default: ldu for the exact Jacobian of a damped cloth, ldlt otherwise)",
+                [&](const std::string& s) { newton.solver = linear_solvers().parse(s); });
   cli.add_value("--newton-tol", "TOL", "Newton's stopping tolerance on |dv| and |r| (default 1e-8)",
                 [&](const std::string& s) {
                   const double t = parse_number(s);
@@ -218,21 +218,16 @@ int main(int argc, char** argv) {
                   newton.tolerance = t;
                 });
   cli.add_value("--newton-max-iter", "N",
-                "Newton iterations before a step fails (default 20); 1 is Baraff & Witkin's one-iteration step",
+                "full Newton's iterations before a step fails (default 20)",
                 [&](const std::string& s) {
                   const long long n = parse_integer(s);
                   if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
                   newton.max_iterations = static_cast<int>(n);
                 });
-  cli.add_value("--jacobian", "exact|symmetric|definite",
+  cli.add_value("--jacobian", stiffness_treatments().accepted("|"),
                 "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
                 "(Choi & Ko 2002; the default with cg)",
-                [&](const std::string& s) {
-                  if (s == "exact") jacobian = StiffnessTreatment::exact;
-                  else if (s == "symmetric") jacobian = StiffnessTreatment::symmetric;
-                  else if (s == "definite") jacobian = StiffnessTreatment::definite;
-                  else throw InputError("unknown Jacobian '" + s + "': expected exact, symmetric or definite");
-                });
+                [&](const std::string& s) { jacobian = stiffness_treatments().parse(s); });
   cli.add_switch("--report-runs",
                  "the report's (K, D) = (50,0), (200,0), (200,20) with full and one-iteration Newton, a stiff step's "
                  "residuals and the definite matrix at K = 50 (the chapter's figures; exit 0 even when a run fails)",
@@ -247,7 +242,7 @@ int main(int argc, char** argv) {
       p.damping = D;
       NewtonSettings s = newton;
       s.treatment = jacobian ? *jacobian : default_treatment(newton.solver, Scene(p).has_damping());
-      validate(s, Scene(p));
+      check_settings(s, Scene(p));
       return s;
     };
     if (!want_report_runs) {

@@ -211,7 +211,7 @@ std::string CommandLine::usage() const {
     if (head.size() < 37) head.resize(37, ' ');
     u << head << " " << text << (fallback.empty() ? "" : " (default " + fallback + ")") << "\n";
   };
-  u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (the book's model page):\n";
+  u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (the book's model page, docs/model.md):\n";
   for (const CommonFlag& f : common_flags)
     if (uses(f.name))
       line(std::string(f.name) + " " + f.value_name, f.accepted,
