@@ -1,9 +1,13 @@
 // Eigenvalues of the linearised cloth and its sagged equilibrium, from the analytic Jacobians of ForceField.
 #include "analysis/spectrum.hpp"
 
+#include "analysis/sparse_operators.hpp"
+
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
+#include <Spectra/GenEigsSolver.h>
+#include <Spectra/SymEigsSolver.h>
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -48,6 +52,39 @@ std::vector<std::complex<double>> proportional_spectrum(const std::vector<double
     lambda.push_back(pair[0]);
     lambda.push_back(pair[1]);
   }
+  return lambda;
+}
+
+std::vector<double> largest_stiffness_eigenvalues(ForceField& field, const Vector& x, int count) {
+  const int n = field.dof_count();
+  count = std::clamp(count, 1, n - 2);
+  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
+  field.jacobians(x, Vector::Zero(n), dfdx, dfdv);
+  ScaledSparseProduct op(dfdx, -1.0 / field.scene().params().mass);
+  Spectra::SymEigsSolver<ScaledSparseProduct> lanczos(op, count, std::min(n, std::max(2 * count + 1, 20)));
+  lanczos.init();
+  lanczos.compute(Spectra::SortRule::LargestAlge, 1000, 1e-10);
+  const Vector values = lanczos.eigenvalues();  // descending; only the converged ones
+  return {values.data(), values.data() + values.size()};
+}
+
+std::vector<std::complex<double>> largest_eigenvalues(ForceField& field, const Vector& x, const Vector& v, int count) {
+  const int n = field.dof_count();
+  count = std::clamp(count, 1, 2 * n - 4);
+  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
+  field.jacobians(x, v, dfdx, dfdv);
+  FirstOrderSystemProduct J(dfdx, dfdv, field.scene().params().mass);
+  // One more than asked, so that a conjugate pair at the cut can be completed.
+  const int wanted = count + 1;
+  Spectra::GenEigsSolver<FirstOrderSystemProduct> arnoldi(J, wanted, std::min(2 * n, std::max(2 * wanted + 1, 30)));
+  arnoldi.init();
+  arnoldi.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10);
+  if (arnoldi.info() != Spectra::CompInfo::Successful) return {};
+  const auto values = arnoldi.eigenvalues();  // sorted by decreasing |lambda|
+  std::vector<std::complex<double>> lambda(values.data(), values.data() + values.size());
+  const bool splits_pair = static_cast<int>(lambda.size()) > count && lambda[count - 1].imag() != 0 &&
+                           std::abs(lambda[count] - std::conj(lambda[count - 1])) <= 1e-8 * std::abs(lambda[count]);
+  lambda.resize(std::min<std::size_t>(lambda.size(), splits_pair ? count + 1 : count));
   return lambda;
 }
 
