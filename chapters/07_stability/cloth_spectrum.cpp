@@ -61,6 +61,14 @@ const cloth::Equilibrium& Equilibria::at(double K) {
   return by_stiffness_.emplace(K, std::move(eq)).first->second;
 }
 
+std::vector<Complex> largest_eigenvalues(ForceField& field, const Vector& x, double D, int count) {
+  if (D != 0) return cloth::largest_eigenvalues(field, x, Vector::Zero(x.size()), count);
+  std::vector<Complex> lambda;
+  for (double w2 : cloth::largest_stiffness_eigenvalues(field, x, (count + 1) / 2))
+    for (const Complex& l : cloth::mode_eigenvalues(w2, 0)) lambda.push_back(l);
+  return lambda;
+}
+
 std::vector<Mode> modes_of(const std::vector<Complex>& lambda, bool pairs_only) {
   std::vector<Mode> modes;
   const auto is_pair = [](const Complex& l) { return std::abs(l.imag()) > 1e-9 * std::abs(l); };

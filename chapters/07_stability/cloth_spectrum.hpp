@@ -41,6 +41,11 @@ class Equilibria {
   std::map<double, cloth::Equilibrium> by_stiffness_;
 };
 
+/// The `count` eigenvalues of largest |lambda| of the linearised cloth at (x, v = 0) with damping D: undamped,
+/// +-i omega from the largest omega^2 (Lanczos on the n x n symmetric -M^{-1} df/dx); damped, Arnoldi on the
+/// 2n x 2n first-order system.
+std::vector<Complex> largest_eigenvalues(cloth::ForceField& field, const cloth::Vector& x, double D, int count);
+
 /// The modes of the sagged cloth that decide stability: its `count` eigenvalues of largest |lambda|, by Arnoldi
 /// (cloth::largest_eigenvalues). Real eigenvalues stand alone ({lambda, lambda}); `pairs_only` keeps only
 /// conjugate pairs (what symplectic Euler needs) and gives nothing when the dominant eigenvalue is real.
