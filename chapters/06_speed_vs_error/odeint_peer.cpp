@@ -10,7 +10,7 @@
 
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/methods.hpp"
+#include "integrators/method_registry.hpp"
 #include "program/command_line.hpp"
 #include "program/output.hpp"
 

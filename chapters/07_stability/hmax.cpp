@@ -4,7 +4,7 @@
 #include "parallel_for.hpp"
 
 #include "base/format_number.hpp"
-#include "integrators/methods.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/output.hpp"
 
@@ -85,7 +85,11 @@ struct Job {
 };
 
 // Brackets the boundary by doubling or halving from the guess, then bisects it geometrically.
-void measure(const SceneParams& params, const SweepSettings& sweep, Job& job) {
+// A run that would cost more than the budget is not made: halving then stops at the last h tried, and the job
+// says so (bisection never needs one: it runs between two steps already afforded).
+void measure(const SceneParams& params, const SweepSettings& sweep, int stages, Job& job) {
+  const double unknowns = cloth::Scene(params).dof_count();
+  const auto affordable = [&](double h) { return sweep.run_budget <= 0 || sweep.T / h * stages * unknowns <= sweep.run_budget; };
   const auto ok = [&](double h) {
     ++job.runs;
     return unbounded_reason(params, job.method, h, sweep.T, job.E_eq).empty();
@@ -106,6 +110,11 @@ void measure(const SceneParams& params, const SweepSettings& sweep, Job& job) {
     hi = h;
     while (hi > sweep.h_floor) {
       const double down = std::max(0.5 * hi, sweep.h_floor);
+      if (!affordable(down)) {
+        job.outcome = "bracket stopped at h = " + cloth::format_number(hi, 3) + " s: a run at " +
+                      cloth::format_number(down, 3) + " s costs more than the budget (--budget 0 lifts it)";
+        break;
+      }
       if (ok(down)) {
         lo = down;
         break;
@@ -146,7 +155,7 @@ void skip_over_budget(Job& job, double h, double cost, double budget) {
 
 // Right-hand-side evaluations per step of an explicit method (its stages).
 int stages(const StabilityModel& model) {
-  return model.kind == StabilityModel::Kind::runge_kutta ? static_cast<int>(model.polynomial.size()) - 1 : 1;
+  return model.kind == StabilityModel::Kind::polynomial ? static_cast<int>(model.polynomial.size()) - 1 : 1;
 }
 
 }  // namespace
@@ -202,7 +211,7 @@ std::vector<std::pair<std::string, std::string>> hmax_sweep(const std::string& d
     if (job.skipped) return;
     const SceneParams params = with_stiffness(scene, job.K, job.D);
     if (job.method == "implicit_euler") probe_implicit(params, sweep, job);
-    else measure(params, sweep, job);
+    else measure(params, sweep, stages(stability_model(job.method)), job);
     const std::lock_guard<std::mutex> lock(print);
     std::printf("  measured K = %-7g D = %-3g %-17s h_max in [%.4g, %.4g] (%d runs, %.2f s)\n", job.K, job.D,
                 job.method.c_str(), job.h, job.h_fail, job.runs,

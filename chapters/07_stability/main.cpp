@@ -18,6 +18,10 @@ int main(int argc, char** argv) {
   cloth::CommandLine cli("ch07_stability",
                          "Chapter 7: stability regions from the Butcher tableaus, the cloth's spectrum over them, "
                          "predicted\nand measured largest stable steps h_max over K in [10, 1e5] and D in {0, 20}.");
+  // K and D are the sweep's; the other scene flags shape every cloth, --dt is the h of the spectrum figure and
+  // --t-end the horizon T of every run.
+  cli.use_common({"--grid", "--spacing", "--mass", "--damping-model", "--springs", "--pins", "--v0", "--dt", "--t-end",
+                  "--out"});
   bool full = false;
   SweepSettings sweep;
   sweep.run_budget = 5e7;

@@ -3,7 +3,7 @@
 
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/butcher_tableau.hpp"
+#include "integrators/method_registry.hpp"
 #include "program/output.hpp"
 
 #include <algorithm>
@@ -13,26 +13,19 @@
 namespace ch07 {
 
 StabilityModel stability_model(const std::string& method) {
-  StabilityModel model{method, StabilityModel::Kind::runge_kutta, {}};
-  if (method == "implicit_euler") {
-    model.kind = StabilityModel::Kind::implicit_euler;
-    return model;
-  }
-  if (method == "symplectic_euler") {
+  const cloth::Method& row = cloth::find_method(method);
+  StabilityModel model{method, StabilityModel::Kind::polynomial, {}, nullptr};
+  if (row.family == cloth::MethodFamily::explicit_runge_kutta) {
+    model.polynomial = cloth::stability_polynomial(*row.tableau);  // R(z) from A and b, never typed in
+  } else if (row.name == "symplectic_euler") {
     model.kind = StabilityModel::Kind::symplectic_euler;
-    return model;
+  } else if (row.stability != nullptr) {
+    model.kind = StabilityModel::Kind::closed_form;
+    model.stability = row.stability;
+  } else {
+    throw cloth::InputError("method '" + method + "' has no stability model in this chapter");
   }
-  // Explicit Euler is the one-stage tableau "euler".
-  const std::string tableau = method == "explicit_euler" ? "euler" : method;
-  std::string accepted = "explicit_euler, symplectic_euler, implicit_euler";
-  for (const cloth::ButcherTableau& t : cloth::builtin_tableaus()) {
-    if (t.name == tableau) {
-      model.polynomial = cloth::stability_polynomial(t);  // R(z) from A and b, never typed in
-      return model;
-    }
-    accepted += ", " + t.name;
-  }
-  throw cloth::InputError("unknown method '" + method + "' (accepted: " + accepted + ")");
+  return model;
 }
 
 // [growth_factor]
@@ -46,10 +39,10 @@ double growth_factor(const StabilityModel& model, double h, const std::vector<Mo
       case StabilityModel::Kind::symplectic_euler:
         worst = std::max(worst, cloth::symplectic_euler_amplification(h * mode[0], h * mode[1]));
         break;
-      case StabilityModel::Kind::implicit_euler:
-        for (const Complex& lambda : mode) worst = std::max(worst, std::abs(cloth::implicit_euler_stability(h * lambda)));
+      case StabilityModel::Kind::closed_form:
+        for (const Complex& lambda : mode) worst = std::max(worst, std::abs(model.stability(h * lambda)));
         break;
-      case StabilityModel::Kind::runge_kutta:
+      case StabilityModel::Kind::polynomial:
         for (const Complex& lambda : mode) {
           const Complex z = h * lambda;
           Complex R = 0;
@@ -65,7 +58,7 @@ double growth_factor(const StabilityModel& model, double h, const std::vector<Mo
 
 std::vector<std::string> region_methods() {
   std::vector<std::string> methods;
-  for (const cloth::ButcherTableau& t : cloth::builtin_tableaus()) methods.push_back(t.name);
+  for (const cloth::Method* m : cloth::methods_of(cloth::MethodFamily::explicit_runge_kutta)) methods.push_back(m->name);
   methods.emplace_back("implicit_euler");
   methods.emplace_back("symplectic_euler");
   return methods;

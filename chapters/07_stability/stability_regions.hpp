@@ -17,23 +17,24 @@ using cloth::Complex;
 /// roots of an overdamped mode). Symplectic Euler needs the pair; the other methods act on each eigenvalue.
 using Mode = std::array<Complex, 2>;
 
-/// What linear stability theory needs of a method: R(z) as a polynomial for an explicit tableau, or the rule of
-/// implicit or symplectic Euler.
+/// What linear stability theory needs of a method: R(z) as a polynomial for an explicit tableau (computed from
+/// A and b), the registry's closed-form R(z) for an implicit one, or symplectic Euler's 2 x 2 step matrix.
 struct StabilityModel {
-  enum class Kind { runge_kutta, implicit_euler, symplectic_euler };
+  enum class Kind { polynomial, closed_form, symplectic_euler };
   std::string method;
-  Kind kind = Kind::runge_kutta;
-  std::vector<double> polynomial;  ///< r_0..r_s of R(z) = sum r_k z^k (runge_kutta only)
+  Kind kind = Kind::polynomial;
+  std::vector<double> polynomial;                   ///< r_0..r_s of R(z) = sum r_k z^k (polynomial)
+  Complex (*stability)(Complex z) = nullptr;        ///< R(z) (closed_form)
 };
 
-/// The model of a method by its program name (explicit_euler, symplectic_euler, implicit_euler or a built-in
-/// tableau's name); throws cloth::InputError naming the accepted ones for anything else.
+/// The model of a registered method (integrators/method_registry.hpp); throws cloth::InputError listing the
+/// registered names for an unknown one, and for a method with neither a scalar R(z) nor a rule here.
 StabilityModel stability_model(const std::string& method);
 
 /// The largest factor by which one step of length h multiplies a mode (see the .cpp).
 double growth_factor(const StabilityModel& model, double h, const std::vector<Mode>& modes);
 
-/// The methods whose regions are drawn: every built-in tableau, implicit Euler and symplectic Euler.
+/// The methods whose regions are drawn: every explicit Runge-Kutta method, implicit Euler and symplectic Euler.
 std::vector<std::string> region_methods();
 
 /// Writes regions.dat (|R(z)| on a grid of the z-plane, one gnuplot index block per method, in the order of
