@@ -88,6 +88,7 @@ constexpr SharedFlag shared_flags[] = {
     {"--grid", "MxN", "particles, M, N >= 2", "20x20"},
     {"--spacing", "d", "rest spacing [m], > 0", "0.1"},
     {"--K", "k", "spring stiffness [N/m], > 0", "50"},
+    {"--K-flexion", "k", "stiffness of the flexion springs alone [N/m], > 0", "--K"},
     {"--damping", "D", "damping coefficient, >= 0", "0"},
     {"--damping-model", "projected|report", "damping law", "projected"},
     {"--springs", "LIST", "comma list of structural,shear,flexion", "all three"},
@@ -193,6 +194,7 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
       else if (flag == "--grid") grid_text = value;
       else if (flag == "--spacing") opt.scene.grid.d = positive(value);
       else if (flag == "--K") opt.scene.stiffness = positive(value);
+      else if (flag == "--K-flexion") opt.scene.flexion_stiffness = positive(value);
       else if (flag == "--damping") opt.scene.damping = non_negative(value);
       else if (flag == "--damping-model") {
         if (value == "projected") opt.scene.damping_model = DampingModel::projected;

@@ -44,6 +44,8 @@ void write_outputs(const RunResult& result, const Stepper& stepper, const RunSet
       {"factorizations", std::to_string(result.counters.factorizations)},
       {"cg_iterations", std::to_string(result.counters.cg_iterations)},
   };
+  // The flexion springs' own stiffness only when one was given, so that every other run.txt stays as it was.
+  if (p.flexion_stiffness) kv.insert(kv.begin() + 4, {"K_flexion", num(*p.flexion_stiffness)});
   kv.insert(kv.end(), extra.begin(), extra.end());
   kv.emplace_back("status", result.status == RunStatus::ok ? "ok" : result.message);
   write_key_values(dir + "run.txt", kv);
