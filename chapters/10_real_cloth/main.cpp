@@ -44,60 +44,81 @@ std::string preset_table() {
 }
 
 // [refinement]
+// RK4 at half its stable step on the fabric preset with n particles per side; the positions of every particle at
+// t = k T / snapshots, k = 0..snapshots.
+std::vector<Vector> fabric_motion(int n, double T, int snapshots, long long& steps, double& seconds) {
+  const SceneParams p = fabric_scene(FabricMeasurements{}, {0.95, n, 20.0});
+  const Scene scene(p);
+  ForceField field(scene);
+  auto rk4 = ch10::make_method("rk4", field);
+  const double omega = lattice_fastest_frequency({p.stiffness, p.stiffness, *p.flexion_stiffness, p.mass});
+  steps = snapshots * static_cast<long long>(std::ceil(T / snapshots / (0.5 * 2 * std::sqrt(2.0) / omega)));
+  const double h = T / static_cast<double>(steps);
+  Vector x = scene.initial_positions(), v = scene.initial_velocities(), all(3 * scene.particle_count());
+  std::vector<Vector> out;
+  const double t0 = ch10::cpu_seconds();
+  for (long long k = 0; k <= steps; ++k) {
+    if (k % (steps / snapshots) == 0) {
+      scene.all_positions(x, all);
+      out.push_back(all);
+    }
+    if (k < steps) rk4->step(h, x, v);
+  }
+  seconds = ch10::cpu_seconds() - t0;
+  return out;
+}
+
 // The same square metre with 20, 39, 77 (and 153) particles per side: particle (i, j) of one grid sits where
-// particle (2i, 2j) of the next sits, so their positions at T can be compared directly.
+// particle (2i, 2j) of the next sits, so their positions at T are compared directly.
 void refinement(const Settings& s) {
   const std::vector<int> sizes = s.quick ? std::vector<int>{20, 39} : std::vector<int>{20, 39, 77, 153};
   const double T = 0.5;
-  std::vector<Vector> finals;
-  std::vector<Grid> grids;
-  std::string table = "| particles per side | RK4 step [s] | steps | max distance to the next finer grid at T [m] |\n"
-                      "|---|---|---|---|\n";
-  for (int n : sizes) {
-    const SceneParams p = fabric_scene(FabricMeasurements{}, {0.95, n, 20.0});
-    const Scene scene(p);
-    const double w = lattice_fastest_frequency({p.stiffness, p.stiffness, *p.flexion_stiffness, p.mass});
-    const long long steps = static_cast<long long>(std::ceil(T / (0.5 * 2 * std::sqrt(2.0) / w)));
-    const ch10::Run r = ch10::run_to(scene, "rk4", T, steps, 0);
-    Vector all(3 * scene.particle_count());
-    scene.all_positions(r.x, all);
-    finals.push_back(all);
-    grids.push_back(p.grid);
-    std::printf("refinement: %d x %d, %lld RK4 steps, %.2f s\n", n, n, steps, r.seconds);
-  }
-  std::string dat = "# n h steps distance_to_next_finer_at_T\n";
+  const int snapshots = 5;
+  std::vector<std::vector<Vector>> motion;
+  std::vector<long long> steps(sizes.size());
   for (std::size_t k = 0; k < sizes.size(); ++k) {
-    double distance = NAN;
+    double seconds = 0;
+    motion.push_back(fabric_motion(sizes[k], T, snapshots, steps[k], seconds));
+    std::printf("refinement: %d x %d, %lld RK4 steps, %.2f s\n", sizes[k], sizes[k], steps[k], seconds);
+  }
+  std::string table = "| particles per side | RK4 step [s] | steps | largest distance to the next finer grid at "
+                      "t = 0.1 s, 0.2 s, ..., 0.5 s [m] |\n|---|---|---|---|\n";
+  std::string dat = "# n h steps then the largest distance to the next finer grid at t = 0.1 ... 0.5\n";
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    std::string distances;
+    dat += format("%d %.6g %lld", sizes[k], T / static_cast<double>(steps[k]), steps[k]);
     if (k + 1 < sizes.size()) {
-      distance = 0;
-      const Grid& coarse = grids[k];
-      const Grid& fine = grids[k + 1];
-      for (int i = 0; i < coarse.M; ++i)
-        for (int j = 0; j < coarse.N; ++j)
-          distance = std::max(distance, (finals[k].segment<3>(3 * coarse.particle(i, j)) -
-                                         finals[k + 1].segment<3>(3 * fine.particle(2 * i, 2 * j)))
-                                            .norm());
+      for (int f = 1; f <= snapshots; ++f) {
+        double distance = 0;
+        const int n = sizes[k], fine = sizes[k + 1];
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j)
+            distance = std::max(distance, (motion[k][f].segment<3>(3 * (i * n + j)) -
+                                           motion[k + 1][f].segment<3>(3 * (2 * i * fine + 2 * j)))
+                                              .norm());
+        distances += format("%s%.2g", f == 1 ? "" : ", ", distance);
+        dat += format(" %.6e", distance);
+      }
     }
-    const SceneParams p = fabric_scene(FabricMeasurements{}, {0.95, sizes[k], 20.0});
-    const double w = lattice_fastest_frequency({p.stiffness, p.stiffness, *p.flexion_stiffness, p.mass});
-    const long long steps = static_cast<long long>(std::ceil(T / (0.5 * 2 * std::sqrt(2.0) / w)));
-    table += format("| %d | %.3g | %lld | %s |\n", sizes[k], T / static_cast<double>(steps), steps,
-                    k + 1 < sizes.size() ? format("%.3g", distance).c_str() : "(finest)");
-    dat += format("%d %.6g %lld %.6e\n", sizes[k], T / static_cast<double>(steps), steps, distance);
+    dat += "\n";
+    table += format("| %d | %.3g | %lld | %s |\n", sizes[k], T / static_cast<double>(steps[k]), steps[k],
+                    k + 1 < sizes.size() ? distances.c_str() : "(finest)");
   }
   ch10::write_text(s.out, "refinement.md", table);
   ch10::write_text(s.out, "refinement.dat", dat);
-  // Snapshots of the finest grid computed, for the figure.
-  std::string frames = "# i j x y z of the finest grid at T\n";
-  const Grid& g = grids.back();
-  for (int i = 0; i < g.M; ++i) {
-    for (int j = 0; j < g.N; ++j) {
-      const auto x = finals.back().segment<3>(3 * g.particle(i, j));
-      frames += format("%d %d %.6g %.6g %.6g\n", i, j, x[0], x[1], x[2]);
+  // The 39 x 39 fabric at the snapshot times, for the figure: one gnuplot index block per time.
+  std::string frames = "# i j x y z of the 39 x 39 fabric, one block per t = 0, 0.1, ..., 0.5 s\n";
+  const int n = sizes[1];
+  for (const Vector& all : motion[1]) {
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j)
+        frames += format("%d %d %.6g %.6g %.6g\n", i, j, all[3 * (i * n + j)], all[3 * (i * n + j) + 1],
+                         all[3 * (i * n + j) + 2]);
+      frames += "\n";
     }
     frames += "\n";
   }
-  ch10::write_text(s.out, "refined_final.dat", frames);
+  ch10::write_text(s.out, "fabric_frames.dat", frames);
 }
 // [refinement]
 
