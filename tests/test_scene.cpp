@@ -1,13 +1,12 @@
-// Scenes against their definition in MODEL.md: which particles each pin set holds, that pinned particles are
+// Scenes against their definition in docs/model.md: which particles each pin set holds, that pinned particles are
 // not unknowns and never move during a run, and that a free cloth's centre of mass falls exactly as the
 // integrator says a single particle would (internal forces cancel).
 #include <doctest/doctest.h>
 
 #include "model/force_field.hpp"
 #include "base/input_error.hpp"
-#include "integrators/explicit_euler.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
-#include "integrators/symplectic_euler.hpp"
 
 #include <memory>
 #include <random>
@@ -17,7 +16,7 @@ using namespace cloth;
 
 namespace {
 
-// MODEL.md's pin sets, written out independently of the library.
+// docs/model.md's pin sets, written out independently of the library.
 bool pinned_by_definition(PinSet pins, int M, int N, int i, int j) {
   switch (pins) {
     case PinSet::corners: return (i == 0 || i == M - 1) && (j == 0 || j == N - 1);
@@ -94,9 +93,7 @@ TEST_CASE("pinned particles never move during a run, for every pin set and both 
       p.damping = 2.0;
       const Scene scene(p);
       ForceField field(scene);
-      std::unique_ptr<Stepper> stepper;
-      if (symplectic) stepper = std::make_unique<SymplecticEuler>(field);
-      else stepper = std::make_unique<ExplicitEuler>(field);
+      const auto stepper = make_stepper(symplectic ? "symplectic_euler" : "explicit_euler", field);
       RunSettings run;
       run.dt = 0.002;
       run.t_end = 0.2;
@@ -135,9 +132,7 @@ TEST_CASE("a free cloth's centre of mass moves exactly as the stepper moves one 
     const Scene scene(p);
     CHECK(scene.dof_count() == 3 * 7 * 4);
     ForceField field(scene);
-    std::unique_ptr<Stepper> stepper;
-    if (symplectic) stepper = std::make_unique<SymplecticEuler>(field);
-    else stepper = std::make_unique<ExplicitEuler>(field);
+    const auto stepper = make_stepper(symplectic ? "symplectic_euler" : "explicit_euler", field);
 
     std::mt19937 rng(21);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);

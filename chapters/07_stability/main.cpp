@@ -6,7 +6,7 @@
 #include "base/input_error.hpp"
 #include "program/output.hpp"
 #include "analysis/spectrum.hpp"
-#include "integrators/methods.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "analysis/stability_function.hpp"
 
@@ -33,9 +33,8 @@ using Mode = std::array<Complex, 2>;
 double growth_factor(const std::string& method, double h, const std::vector<Mode>& modes) {
   // R(z) of a tableau is a polynomial whose coefficients come from A and b (stability_polynomial).
   std::vector<double> poly;
-  const std::string name = method == "explicit_euler" ? "euler" : method;
-  for (const ButcherTableau& t : builtin_tableaus())
-    if (t.name == name) poly = stability_polynomial(t);
+  const Method& row = find_method(method);
+  if (row.family == MethodFamily::explicit_runge_kutta) poly = stability_polynomial(*row.tableau);
   double worst = 0;
   for (const Mode& mode : modes) {
     if (method == "symplectic_euler") {
@@ -179,7 +178,7 @@ int main(int argc, char** argv) {
     // 1. Stability regions: |R(z)| on a grid of the complex plane, one gnuplot index block per method; the
     // figure draws the contour |R| = 1. Symplectic Euler's is drawn for conjugate-pair modes (z, conj z).
     std::vector<std::string> region_methods;
-    for (const ButcherTableau& t : builtin_tableaus()) region_methods.push_back(t.name);
+    for (const Method* m : methods_of(MethodFamily::explicit_runge_kutta)) region_methods.push_back(m->name);
     region_methods.emplace_back("implicit_euler");
     region_methods.emplace_back("symplectic_euler");
     {

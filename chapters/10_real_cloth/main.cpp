@@ -459,7 +459,8 @@ int main(int argc, char** argv) {
   CommandLine cli("ch10_real_cloth",
                   "Chapter 10: real cloth in physical units. Fabric preset, refinement, stable steps, the cost of\n"
                   "each method to reach 1 cm and 1 mm, and the map of the cheapest method. The scenes are the\n"
-                  "chapter's own (the scene flags are not used); --out says where the tables and data go.");
+                  "chapter's own; --out says where the tables and data go.");
+  cli.use_common({"--out"});
   Settings s;
   cli.add_switch("--quick", "a reduced sweep for the plots target (under a minute)", [&] { s.quick = true; });
   return run_program(cli.program(), [&] {

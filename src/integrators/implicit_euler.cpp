@@ -6,19 +6,20 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 
 namespace cloth {
 
-const char* linear_solver_name(LinearSolverKind kind) {
-  switch (kind) {
-    case LinearSolverKind::ldlt: return "ldlt";
-    case LinearSolverKind::ldu: return "ldu";
-    case LinearSolverKind::cg: return "cg";
-    case LinearSolverKind::lu: return "lu";
-    case LinearSolverKind::automatic: return "automatic";
-  }
-  return "?";
+const NameTable<LinearSolverKind>& linear_solvers() {
+  static const NameTable<LinearSolverKind> table(
+      "linear solver", {{LinearSolverKind::ldlt, "ldlt"}, {LinearSolverKind::ldu, "ldu"}, {LinearSolverKind::cg, "cg"},
+                        {LinearSolverKind::lu, "lu"}, {LinearSolverKind::automatic, "automatic"}});
+  return table;
+}
+
+const NameTable<NewtonVariant>& newton_variants() {
+  static const NameTable<NewtonVariant> table(
+      "Newton variant", {{NewtonVariant::full, "full"}, {NewtonVariant::modified, "modified"}, {NewtonVariant::one, "one"}});
+  return table;
 }
 
 NewtonSettings resolve(NewtonSettings settings, const Scene& scene) {
@@ -31,19 +32,16 @@ NewtonSettings resolve(NewtonSettings settings, const Scene& scene) {
 void validate(const NewtonSettings& settings, const Scene& scene) {
   const NewtonSettings s = resolve(settings, scene);
   if (!(s.tolerance > 0) || !std::isfinite(s.tolerance))
-    throw InputError("--newton-tol: expected a number > 0");
-  if (s.max_iterations < 1) throw InputError("--newton-max-iter: expected a whole number >= 1");
+    throw InputError("Newton tolerance: expected a finite number > 0");
+  if (s.max_iterations < 1) throw InputError("Newton iteration limit: expected a whole number >= 1");
+  if (s.variant == NewtonVariant::modified)
+    throw InputError("Newton variant modified is not implemented yet: use full or one");
   if (s.solver == LinearSolverKind::cg && s.treatment != StiffnessTreatment::definite)
-    throw InputError("--linear-solver cg needs a symmetric positive definite matrix: use --jacobian definite "
-                     "with it, or --linear-solver ldlt, ldu or lu");
+    throw InputError("linear solver cg needs a symmetric positive definite matrix: use the definite Jacobian "
+                     "treatment with it, or linear solver ldlt, ldu or lu");
   if (s.solver == LinearSolverKind::ldlt && s.treatment == StiffnessTreatment::exact && scene.has_damping())
-    throw InputError("--linear-solver ldlt needs a symmetric matrix, and the exact Jacobian of a damped cloth is "
-                     "not: use --linear-solver ldu or lu, or --jacobian symmetric or definite");
-}
-
-std::string ImplicitEuler::name() const {
-  std::string n = settings_.max_iterations == 1 ? "implicit_euler_1newton" : "implicit_euler";
-  return n + "_" + linear_solver_name(settings_.solver);
+    throw InputError("linear solver ldlt needs a symmetric matrix, and the exact Jacobian of a damped cloth is "
+                     "not: use linear solver ldu or lu, or the symmetric or definite Jacobian treatment");
 }
 
 ImplicitEuler::ImplicitEuler(ForceField& field, NewtonSettings settings)
@@ -52,7 +50,7 @@ ImplicitEuler::ImplicitEuler(ForceField& field, NewtonSettings settings)
   const int n = field.dof_count();
   v1_.resize(n), x1_.resize(n), f_.resize(n), r_.resize(n), dv_.resize(n);
   warm_dv_ = Vector::Zero(n);
-  residuals_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 1);
+  residuals_.reserve(static_cast<std::size_t>(max_iterations()) + 1);
   // The pattern never changes, so the fill-reducing ordering and the symbolic factorization are done once.
   if (settings_.solver == LinearSolverKind::ldlt) block_.analyze(A_, BlockLDU::Symmetry::symmetric);
   if (settings_.solver == LinearSolverKind::ldu) block_.analyze(A_, BlockLDU::Symmetry::general);
@@ -169,23 +167,21 @@ bool ImplicitEuler::step(double h, Vector& x, Vector& v) {
       ++counters_.steps;
       return true;
     }
-    if (k == settings_.max_iterations) break;
+    if (k == max_iterations()) break;
     // Newton update: J dv = -r with J = M - h df/dv - h^2 df/dx at (x0 + h v1, v1).
     auto t0 = clock::now();
     field_.newton_matrix(x1_, v1_, h, settings_.treatment, A_);
     ++counters_.jacobian_assemblies;
     timing_.assembly += std::chrono::duration<double>(clock::now() - t0).count();
     if (!solve(r_, dv_, k == 0)) {
-      char buf[200];
-      std::snprintf(buf, sizeof buf, "linear solve (%s) failed in Newton iteration %d, |r|_inf = %.3g%s%s",
-                    linear_solver_name(settings_.solver), k + 1, residual, linear_failure_.empty() ? "" : ": ",
-                    linear_failure_.c_str());
-      failure_ = {linear_failure_kind_, buf};
+      failure_ = {linear_failure_kind_, std::string("linear solve (") + linear_solvers().name(settings_.solver) +
+                                            ") failed in Newton iteration " + std::to_string(k + 1) +
+                                            ", |r|_inf = " + format_number(residual, 3) + ": " + linear_failure_};
       counters_.newton_iterations += k + 1;
       return false;
     }
     if (k == 0) warm_dv_ = dv_;
-    if (settings_.max_iterations == 1) {
+    if (settings_.variant == NewtonVariant::one) {
       // Baraff & Witkin's linearly implicit step: one Newton iteration, accepted by design, unchecked.
       v1_ += dv_;
       x = x + h * v1_;
@@ -212,11 +208,10 @@ bool ImplicitEuler::step(double h, Vector& x, Vector& v) {
     update = step_fraction * dv_.lpNorm<Eigen::Infinity>();
   }
   // [newton_loop]
-  char buf[200];
-  std::snprintf(buf, sizeof buf, "Newton did not converge in %d iterations: |r|_inf = %.3g, |dv|_inf = %.3g",
-                settings_.max_iterations, residuals_.back(), update);
-  failure_ = {StepFailureKind::newton_not_converged, buf};
-  counters_.newton_iterations += settings_.max_iterations;
+  failure_ = {StepFailureKind::newton_not_converged,
+              "Newton did not converge in " + std::to_string(max_iterations()) + " iterations: |r|_inf = " +
+                  format_number(residuals_.back(), 3) + ", |dv|_inf = " + format_number(update, 3)};
+  counters_.newton_iterations += max_iterations();
   return false;
 }
 

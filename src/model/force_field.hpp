@@ -1,7 +1,8 @@
-// The forces of MODEL.md on the free particles (spring, damping, gravity), their energies, and their analytic
+// The forces of docs/model.md on the free particles (spring, damping, gravity), their energies, and their analytic
 // Jacobians df/dx and df/dv assembled into sparse matrices whose pattern is built once per scene.
 #pragma once
 
+#include "base/name_table.hpp"
 #include "model/scene.hpp"
 
 #include <Eigen/Core>
@@ -16,7 +17,7 @@ using ConstVectorRef = Eigen::Ref<const Eigen::VectorXd>;
 using VectorRef = Eigen::Ref<Eigen::VectorXd>;
 using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major (CSC), full storage of both triangles
 
-/// The three parts of the energy E = kinetic + gravity + spring (MODEL.md), in joules.
+/// The three parts of the energy E = kinetic + gravity + spring (docs/model.md), in joules.
 struct Energy {
   double kinetic = 0;
   double gravity = 0;
@@ -32,6 +33,9 @@ enum class StiffnessTreatment {
   definite    ///< also Choi & Ko (2002): compressed springs lose their transverse term, so the matrix is
               ///< symmetric positive definite
 };
+
+/// The treatments by name: exact, symmetric, definite.
+const NameTable<StiffnessTreatment>& stiffness_treatments();
 
 /// Below this fraction of its rest length a spring has no defined direction u; it then exerts no force and
 /// contributes nothing to the Jacobians (the guard for coincident particles, Chapter 7).
