@@ -70,12 +70,24 @@
     }
   }
 
+  function loadsOnItsOwn(src) {
+    return new Promise((resolve) => {
+      const probe = new Image();
+      probe.onload = () => resolve(probe.naturalWidth > 0);
+      probe.onerror = () => resolve(false);
+      probe.src = src;
+    });
+  }
+
   // An image not yet decoded when the page's load event fired (an SVG, at times) gets the time to decode: only
   // one that cannot be (missing, or not an image) is reported.
   async function checkImages(page, doc) {
     for (const img of doc.images) {
       if (img.complete && img.naturalWidth > 0) continue;
-      const decoded = await img.decode().then(() => true, () => false);
+      let decoded = await img.decode().then(() => true, () => false);
+      // decode() can also reject for an image that is fine but was not rendered yet on a busy machine: load the
+      // file once more on its own, where only a missing or undecodable file fails.
+      if (!decoded) decoded = await loadsOnItsOwn(img.src);
       if (!decoded) report(page, "image '" + img.getAttribute("src") + "' is missing or cannot be decoded");
     }
   }
