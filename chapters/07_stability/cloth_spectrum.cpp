@@ -1,6 +1,8 @@
 // Rest and sagged spectra of the cloth for Chapter 7.
 #include "cloth_spectrum.hpp"
 
+#include "parallel_for.hpp"
+
 #include "base/format_number.hpp"
 #include "program/output.hpp"
 
@@ -69,6 +71,24 @@ std::vector<Complex> largest_eigenvalues(ForceField& field, const Vector& x, dou
   return lambda;
 }
 
+void Equilibria::prepare(const std::vector<double>& stiffnesses, int threads) {
+  std::vector<double> missing;
+  for (double K : stiffnesses)
+    if (by_stiffness_.count(K) == 0 && std::find(missing.begin(), missing.end(), K) == missing.end()) missing.push_back(K);
+  std::vector<cloth::Equilibrium> found(missing.size());
+  parallel_for(missing.size(), threads, [&](std::size_t k) {
+    const Scene scene(with_stiffness(scene_, missing[k], 0.0));
+    ForceField field(scene);
+    found[k] = cloth::static_equilibrium(field);
+  });
+  for (std::size_t k = 0; k < missing.size(); ++k) {
+    if (!found[k].converged)
+      std::fprintf(stderr, "ch07_stability: the sagged equilibrium for K = %g did not converge (|f| = %.3g N)\n",
+                   missing[k], found[k].residual);
+    by_stiffness_.emplace(missing[k], std::move(found[k]));
+  }
+}
+
 std::vector<Mode> modes_of(const std::vector<Complex>& lambda, bool pairs_only) {
   std::vector<Mode> modes;
   const auto is_pair = [](const Complex& l) { return std::abs(l.imag()) > 1e-9 * std::abs(l); };
@@ -129,7 +149,7 @@ void write_points(const std::string& path, const std::string& header, const std:
 
 std::vector<std::pair<std::string, std::string>> report_spectra(const std::string& dir, const SceneParams& scene,
                                                                 const RestSpectrum& rest, Equilibria& equilibria,
-                                                                double h, bool dense_damped) {
+                                                                double h, bool dense_damped, int threads) {
   if (rest.exact)
     std::printf("rest state: %zu eigenvalues of L in [%.3g, %.4f]; %d of them are zero (the flat sheet has no "
                 "out-of-plane stiffness)\n", rest.mu.size(), rest.mu.front(), rest.mu_max, rest.zero_count);
@@ -138,6 +158,7 @@ std::vector<std::pair<std::string, std::string>> report_spectra(const std::strin
                 "the rest spectrum is drawn from %zu samples of [0, %.4f]\n", rest.mu_max, rest.mu.size(), rest.mu_max);
   std::vector<std::pair<std::string, std::string>> summary = {{"rest_L_max_eigenvalue", cloth::format_number(rest.mu_max)}};
   const std::vector<std::pair<double, double>> report_cases = {{50, 0}, {200, 0}, {200, 20}};
+  equilibria.prepare({50, 200}, threads);
   for (const auto& [K, D] : report_cases) {
     const std::string tag = "K" + cloth::format_number(K) + "_D" + cloth::format_number(D);
     std::vector<Complex> at_rest;

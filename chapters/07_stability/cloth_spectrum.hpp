@@ -35,6 +35,8 @@ class Equilibria {
  public:
   explicit Equilibria(cloth::SceneParams scene) : scene_(std::move(scene)) {}
   const cloth::Equilibrium& at(double K);
+  /// Computes the equilibria of every stiffness not yet known, on `threads` threads (they are independent).
+  void prepare(const std::vector<double>& stiffnesses, int threads);
 
  private:
   cloth::SceneParams scene_;
@@ -56,7 +58,7 @@ std::vector<Mode> modes_of(const std::vector<Complex>& lambda, bool pairs_only);
 /// general one, with `dense_damped` only) where the grid is small enough, its largest eigenvalues otherwise.
 std::vector<std::pair<std::string, std::string>> report_spectra(const std::string& dir, const cloth::SceneParams& scene,
                                                                 const RestSpectrum& rest, Equilibria& equilibria,
-                                                                double h, bool dense_damped);
+                                                                double h, bool dense_damped, int threads);
 
 /// The scene with stiffness K and damping D.
 cloth::SceneParams with_stiffness(cloth::SceneParams scene, double K, double D);

@@ -163,41 +163,57 @@ int stages(const StabilityModel& model) {
 std::vector<std::pair<std::string, std::string>> hmax_sweep(const std::string& dir, const SceneParams& scene,
                                                             const RestSpectrum& rest, Equilibria& equilibria,
                                                             const SweepSettings& sweep) {
+  // The predictions at each (D, K), independent of each other: computed on every thread, written in order.
+  struct Cell {
+    double K = 0, D = 0;
+    std::vector<Job> jobs;
+    std::string lines;  // its lines of predicted.dat
+  };
+  std::vector<Cell> cells;
+  for (double D : sweep.dampings)
+    for (double K : sweep.stiffnesses) cells.push_back({K, D, {}, {}});
+  equilibria.prepare(sweep.stiffnesses, sweep.threads);
+  parallel_for(cells.size(), sweep.threads, [&](std::size_t c) {
+    const double K = cells[c].K, D = cells[c].D;
+    const cloth::Equilibrium& eq = equilibria.at(K);
+    const cloth::Scene s(with_stiffness(scene, K, D));
+    cloth::ForceField field(s);
+    const cloth::Vector zero = cloth::Vector::Zero(eq.x.size());
+    const cloth::Energy e = field.energy(eq.x, zero);
+    // At the sagged state only the largest eigenvalues are known. A real dominant eigenvalue of an overdamped
+    // cloth does not tell symplectic Euler its partner: n/a.
+    const std::vector<Complex> largest = largest_eigenvalues(field, eq.x, D, 6);
+    const std::vector<Mode> rest_at_K = rest_modes(rest, K, D, scene.mass);
+    for (const std::string& method : sweep.methods) {
+      const StabilityModel model = stability_model(method);
+      const Prediction r = predict(model, rest_at_K, sweep.T, 1.0);
+      const std::vector<Mode> sagged = modes_of(largest, model.kind == StabilityModel::Kind::symplectic_euler);
+      const double sagged_strict = sagged.empty() ? NAN : predict(model, sagged, sweep.T, 1.0).strict;
+      char line[160];
+      std::snprintf(line, sizeof line, "%g %g %s %.6g %.6g %.6g\n", K, D, method.c_str(), r.strict, r.horizon, sagged_strict);
+      cells[c].lines += line;
+      Job job{K, D, method, r.strict > 0 ? r.strict : r.horizon, e.gravity + e.spring, 0, 0, 0, {}, false};
+      // A run near the predicted h costs T / h steps of `stages` right-hand sides over every unknown.
+      const double h = std::clamp(job.guess, sweep.h_floor, sweep.h_ceiling);
+      skip_over_budget(job, h, sweep.T / h * stages(model) * static_cast<double>(eq.x.size()), sweep.run_budget);
+      cells[c].jobs.push_back(job);
+    }
+    // Implicit Euler is A-stable: no predicted limit. It is probed at h = 0.1 s, where it is cheapest; a step
+    // there measured hundreds to thousands of right-hand sides' worth (assembly, factorization, Newton
+    // iterations on the strongly sagging cloth), counted as 1000.
+    if (K == sweep.stiffnesses.front() || K == sweep.stiffnesses.back() || std::abs(std::log10(K) - 3) < 1e-9) {
+      Job job{K, D, "implicit_euler", 0.1, e.gravity + e.spring, 0, 0, 0, {}, false};
+      skip_over_budget(job, 0.1, sweep.T / 0.1 * 1000 * static_cast<double>(eq.x.size()), sweep.run_budget);
+      cells[c].jobs.push_back(job);
+    }
+  });
   std::vector<Job> jobs;
   cloth::OutputFile pred(dir + "/predicted.dat");
   std::fprintf(pred.get(), "# K D method h_strict_rest h_horizon_rest h_strict_sagged (largest eigenvalues; nan: n/a)\n");
-  for (double D : sweep.dampings)
-    for (double K : sweep.stiffnesses) {
-      const cloth::Equilibrium& eq = equilibria.at(K);
-      const cloth::Scene s(with_stiffness(scene, K, D));
-      cloth::ForceField field(s);
-      const cloth::Vector zero = cloth::Vector::Zero(eq.x.size());
-      const cloth::Energy e = field.energy(eq.x, zero);
-      // At the sagged state only the largest eigenvalues are known. A real dominant eigenvalue of an overdamped
-      // cloth does not tell symplectic Euler its partner: n/a.
-      const std::vector<Complex> largest = largest_eigenvalues(field, eq.x, D, 6);
-      const std::vector<Mode> rest_at_K = rest_modes(rest, K, D, scene.mass);
-      for (const std::string& method : sweep.methods) {
-        const StabilityModel model = stability_model(method);
-        const Prediction r = predict(model, rest_at_K, sweep.T, 1.0);
-        const std::vector<Mode> sagged = modes_of(largest, model.kind == StabilityModel::Kind::symplectic_euler);
-        const double sagged_strict = sagged.empty() ? NAN : predict(model, sagged, sweep.T, 1.0).strict;
-        std::fprintf(pred.get(), "%g %g %s %.6g %.6g %.6g\n", K, D, method.c_str(), r.strict, r.horizon, sagged_strict);
-        Job job{K, D, method, r.strict > 0 ? r.strict : r.horizon, e.gravity + e.spring, 0, 0, 0, {}, false};
-        // A run near the predicted h costs T / h steps of `stages` right-hand sides over every unknown.
-        const double h = std::clamp(job.guess, sweep.h_floor, sweep.h_ceiling);
-        skip_over_budget(job, h, sweep.T / h * stages(model) * static_cast<double>(eq.x.size()), sweep.run_budget);
-        jobs.push_back(job);
-      }
-      // Implicit Euler is A-stable: no predicted limit. It is probed at h = 0.1 s, where it is cheapest; a step
-      // there measured hundreds to thousands of right-hand sides' worth (assembly, factorization, Newton
-      // iterations on the strongly sagging cloth), counted as 1000.
-      if (K == sweep.stiffnesses.front() || K == sweep.stiffnesses.back() || std::abs(std::log10(K) - 3) < 1e-9) {
-        Job job{K, D, "implicit_euler", 0.1, e.gravity + e.spring, 0, 0, 0, {}, false};
-        skip_over_budget(job, 0.1, sweep.T / 0.1 * 1000 * static_cast<double>(eq.x.size()), sweep.run_budget);
-        jobs.push_back(job);
-      }
-    }
+  for (const Cell& cell : cells) {
+    std::fputs(cell.lines.c_str(), pred.get());
+    jobs.insert(jobs.end(), cell.jobs.begin(), cell.jobs.end());
+  }
   pred.commit();
 
   std::printf("measuring h_max: %zu bisections over %d threads, floor %g s, ceiling %g s\n", jobs.size(), sweep.threads,

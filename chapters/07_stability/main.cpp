@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
     auto summary = stability_regions(dir);                                 // 1. the regions |R(z)| <= 1
     const RestSpectrum rest = rest_spectrum(opt.scene);                    // 2. the cloth's spectrum over them
     Equilibria equilibria(opt.scene);
-    for (const auto& entry : report_spectra(dir, opt.scene, rest, equilibria, opt.run.dt, full)) summary.push_back(entry);
+    for (const auto& entry : report_spectra(dir, opt.scene, rest, equilibria, opt.run.dt, full, sweep.threads)) summary.push_back(entry);
     write_rest_predictions(dir, rest, sweep, opt.scene.mass);              // 3. h_max predicted and measured
     for (const auto& entry : hmax_sweep(dir, opt.scene, rest, equilibria, sweep)) summary.push_back(entry);
     cloth::write_key_values(dir + "/summary.txt", summary);

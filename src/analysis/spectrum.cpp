@@ -61,7 +61,7 @@ std::vector<double> largest_stiffness_eigenvalues(ForceField& field, const Vecto
   SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
   field.jacobians(x, Vector::Zero(n), dfdx, dfdv);
   ScaledSparseProduct op(dfdx, -1.0 / field.scene().params().mass);
-  Spectra::SymEigsSolver<ScaledSparseProduct> lanczos(op, count, std::min(n, std::max(2 * count + 1, 20)));
+  Spectra::SymEigsSolver<ScaledSparseProduct> lanczos(op, count, std::min(n, std::max(2 * count + 1, 40)));
   lanczos.init();
   lanczos.compute(Spectra::SortRule::LargestAlge, 1000, 1e-10);
   const Vector values = lanczos.eigenvalues();  // descending; only the converged ones
