@@ -4,6 +4,7 @@
 #include "analysis/fastest_modes.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "model/report_cases.hpp"
 #include "model/single_spring.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
@@ -124,20 +125,10 @@ int main(int argc, char** argv) {
     }
     if (!report_runs) return run_cloth(opt.scene, opt.run, method, opt.run.out_dir, cli.program());
 
-    struct Config {
-      double K, D;
-    };
-    const Config configs[] = {{50, 0}, {200, 0}, {200, 20}};
     prepare_output_dir(opt.run.out_dir);
     for (const std::string& m : chapter_methods)
-      for (const Config& c : configs) {
-        SceneParams p = opt.scene;
-        p.stiffness = c.K;
-        p.damping = c.D;
-        char name[64];
-        std::snprintf(name, sizeof name, "/%s_K%g_D%g", m.c_str(), c.K, c.D);
-        run_cloth(p, opt.run, m, opt.run.out_dir + name, cli.program());  // a divergence is a result here
-      }
+      for (const ReportCase& c : report_cases)  // a divergence is a result here
+        run_cloth(with_case(opt.scene, c), opt.run, m, opt.run.out_dir + "/" + m + "_" + c.name(), cli.program());
     measure_single_spring(single_spring_params(200, 0), opt.run, opt.run.out_dir);
     return 0;
   });

@@ -4,6 +4,7 @@
 #include "analysis/fastest_modes.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "model/report_cases.hpp"
 #include "model/single_spring.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/method_registry.hpp"
@@ -121,20 +122,11 @@ int main(int argc, char** argv) {
     const std::string source = builtin ? "builtin" : tableau_argument;
     if (!report_runs) return run_cloth(opt.scene, opt.run, tableau, source, opt.run.out_dir, cli.program());
 
-    struct Config {
-      double K, D;
-    };
-    const Config configs[] = {{50, 0}, {200, 0}, {200, 20}};
     prepare_output_dir(opt.run.out_dir);
     opt.run.frames = static_cast<int>(std::llround(opt.run.t_end / opt.run.dt));  // a frame per step, for lowest_point.dat
-    for (const Config& c : configs) {
-      SceneParams p = opt.scene;
-      p.stiffness = c.K;
-      p.damping = c.D;
-      char name[64];
-      std::snprintf(name, sizeof name, "/%s_K%g_D%g", tableau.name.c_str(), c.K, c.D);
-      run_cloth(p, opt.run, tableau, source, opt.run.out_dir + name, cli.program());
-    }
+    for (const ReportCase& c : report_cases)
+      run_cloth(with_case(opt.scene, c), opt.run, tableau, source, opt.run.out_dir + "/" + tableau.name + "_" + c.name(),
+                cli.program());
     measure_orders(opt.run.out_dir);
     return 0;
   });

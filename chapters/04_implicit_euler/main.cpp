@@ -5,6 +5,7 @@
 #include "base/input_error.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
+#include "model/report_cases.hpp"
 #include "program/run_outputs.hpp"
 
 #include <cmath>
@@ -51,8 +52,8 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
   const int status = report(result, stepper, program);
   if (result.steps > 0)
     std::printf("  Newton iterations per step: %.3f (%lld in %lld steps), %lld factorizations\n",
-                static_cast<double>(result.counters.newton_iterations) / static_cast<double>(result.steps),
-                result.counters.newton_iterations, result.steps, result.counters.factorizations);
+                result.newton_iterations_per_step(), result.counters.newton_iterations, result.steps,
+                result.counters.factorizations);
   return {status, std::move(result)};
 }
 
@@ -61,10 +62,7 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
 // h = 0.01 s (h omega_max ~ 10): exact Jacobian, sparse LU, tolerance tight enough to watch the sequence reach
 // rounding. Writes residuals.dat: iteration k, |r_k|, |r_k| / |r_{k-1}|^2.
 void stiff_step_residuals(const SceneParams& report_scene, const std::string& dir) {
-  SceneParams p = report_scene;
-  p.stiffness = 1e5;
-  p.damping = 0;
-  const Scene scene(p);
+  const Scene scene(with_K_and_D(report_scene, 1e5, 0));
   ForceField field(scene);
   NewtonSettings newton;
   newton.solver = LinearSolverKind::lu;
@@ -117,42 +115,27 @@ void iterations_per_step(const SceneParams& params, const RunSettings& run, cons
 void report_runs(const Options& opt, const NewtonSettings& newton, const std::string& program) {
   const std::string dir = opt.run.out_dir;
   prepare_output_dir(dir);
-  struct Config {
-    double K, D;
-  };
-  const Config configs[] = {{50, 0}, {200, 0}, {200, 20}};
   std::FILE* summary = std::fopen((dir + "/comparison.dat").c_str(), "w");
   if (!summary) throw InputError("--out: cannot write " + dir + "/comparison.dat");
   std::fprintf(summary, "# K D newton_per_step_full newton_per_step_one factorizations_full factorizations_one "
                         "wall_full wall_one E_final_full E_final_one max_position_difference\n");
-  for (const Config& c : configs) {
-    SceneParams p = opt.scene;
-    p.stiffness = c.K;
-    p.damping = c.D;
-    char name[64];
-    std::snprintf(name, sizeof name, "/full_K%g_D%g", c.K, c.D);
-    NewtonSettings full = newton;
-    const Outcome a = run_cloth(p, opt.run, full, dir + name, program);
-    std::snprintf(name, sizeof name, "/one_K%g_D%g", c.K, c.D);
+  for (const ReportCase& c : report_cases) {
+    const SceneParams p = with_case(opt.scene, c);
+    const Outcome a = run_cloth(p, opt.run, newton, dir + "/full_" + c.name(), program);
     NewtonSettings one = newton;
     one.variant = NewtonVariant::one;
-    const Outcome b = run_cloth(p, opt.run, one, dir + name, program);
+    const Outcome b = run_cloth(p, opt.run, one, dir + "/one_" + c.name(), program);
     const double diff = a.result.t == b.result.t ? (a.result.x - b.result.x).lpNorm<Eigen::Infinity>() : NAN;
-    const auto per_step = [](const RunResult& r) {
-      return r.steps ? static_cast<double>(r.counters.newton_iterations) / static_cast<double>(r.steps) : 0.0;
-    };
-    std::fprintf(summary, "%g %g %.4f %.4f %lld %lld %.4f %.4f %.8g %.8g %.4e\n", c.K, c.D, per_step(a.result),
-                 per_step(b.result), a.result.counters.factorizations, b.result.counters.factorizations,
+    std::fprintf(summary, "%g %g %.4f %.4f %lld %lld %.4f %.4f %.8g %.8g %.4e\n", c.K, c.D, a.result.newton_iterations_per_step(),
+                 b.result.newton_iterations_per_step(), a.result.counters.factorizations, b.result.counters.factorizations,
                  a.result.wall_seconds, b.result.wall_seconds, a.result.energy.back().energy.total(),
                  b.result.energy.back().energy.total(), diff);
     std::printf("K = %g, D = %g: full Newton %.3f iterations/step, one iteration: largest position difference at "
-                "t = %g s: %.4g m\n", c.K, c.D, per_step(a.result), a.result.t, diff);
+                "t = %g s: %.4g m\n", c.K, c.D, a.result.newton_iterations_per_step(), a.result.t, diff);
   }
   std::fclose(summary);
   stiff_step_residuals(opt.scene, dir);
-  SceneParams p = opt.scene;
-  p.stiffness = 50;
-  p.damping = 0;
+  const SceneParams p = with_K_and_D(opt.scene, 50, 0);
   NewtonSettings symmetric = newton, definite = newton;
   symmetric.treatment = StiffnessTreatment::symmetric;
   definite.treatment = StiffnessTreatment::definite;

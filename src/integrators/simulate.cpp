@@ -1,10 +1,10 @@
 // The fixed-step driver shared by every simulating chapter.
 #include "integrators/simulate.hpp"
 
+#include "base/format_number.hpp"
+
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <iostream>
 
 namespace cloth {
 
@@ -21,12 +21,9 @@ std::string divergence_reason(const Vector& x, const Vector& v, double radius) {
     const double d2 = x[k] * x[k] + x[k + 1] * x[k + 1] + x[k + 2] * x[k + 2];
     const double s2 = v[k] * v[k] + v[k + 1] * v[k + 1] + v[k + 2] * v[k + 2];
     if (!std::isfinite(d2) || !std::isfinite(s2)) return "a non-finite position or velocity";
-    if (d2 > r2) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "a particle %.3g m from the origin, beyond the bound R = %.3g m", std::sqrt(d2),
-                    radius);
-      return buf;
-    }
+    if (d2 > r2)
+      return "a particle " + format_number(std::sqrt(d2), 3) + " m from the origin, beyond the bound R = " +
+             format_number(radius, 3) + " m";
   }
   return {};
 }
@@ -71,15 +68,14 @@ RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record) {
     const double step_h = k + 1 == steps && std::abs(T - t0 - h) > 1e-9 * h ? T - t0 : h;
     if (!stepper.step(step_h, result.x, result.v)) {
       result.status = RunStatus::step_failed;
+      result.failure = stepper.failure().kind;
       result.message = "step failed at step " + std::to_string(k + 1) + ", t = " + std::to_string(t1) + ": " +
                        stepper.failure().reason;
       break;
     }
     if (const std::string why = divergence_reason(result.x, result.v, radius); !why.empty()) {
       result.status = RunStatus::diverged;
-      char buf[320];
-      std::snprintf(buf, sizeof buf, "diverged at step %lld, t = %.6g s: %s", k + 1, t1, why.c_str());
-      result.message = buf;
+      result.message = "diverged at step " + std::to_string(k + 1) + ", t = " + format_number(t1) + " s: " + why;
       result.x = x_prev;  // keep the last sane state
       result.v = v_prev;
       break;
