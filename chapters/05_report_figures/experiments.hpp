@@ -54,7 +54,7 @@ struct Settings {
 
 /// Runs every run on `settings.threads` threads: first the figures' runs, run (m, c) at index
 /// m * report_cases.size() + c, then the sweep, method by method, K by K, D by D. The figures' runs also leave the
-/// model page's outputs in OUT/runs/<method>_<case>/.
+/// model page's outputs in OUT/runs/METHOD_CASE/ (rk4_K50_D0).
 std::vector<Run> run_all(const cloth::Options& opt, const Settings& settings);
 
 /// The sweep run of method m at sweep_K[k], sweep_D[d].
@@ -77,7 +77,7 @@ std::string outcome(const cloth::RunResult& r);
 /// The time at which a run stopped being sane: the step after the last sane one (NaN for a finished run).
 double stop_time(const cloth::RunResult& r, double h);
 
-/// summary.dat, series_<run>.dat and mesh_<run>.dat of the figures' runs, and the tables plot.gp reads to lay
+/// summary.dat, series_RUN.dat and mesh_RUN.dat of the figures' runs, and the tables plot.gp reads to lay
 /// them out: parameters.dat, runs.dat, instants.dat, cases.dat, figures.dat.
 void write_figure_data(const std::vector<Run>& runs, const cloth::Options& opt, const Settings& settings);
 
