@@ -62,9 +62,8 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
     const EnergyMeasures e = energy_measures(res.energy);
     double min_z = 0;
     for (const Frame& f : res.frames) min_z = std::min(min_z, lowest_z(scene, f.positions));
-    const std::string status = res.status == RunStatus::ok         ? "ok"
-                               : res.status == RunStatus::diverged ? "diverged"
-                                                                   : step_failure_name(res.failure);
+    const std::string status =
+        res.status == RunStatus::step_failed ? step_failure_name(res.failure) : run_status_name(res.status);
     std::fprintf(summary.get(), "%s %g %g %s %.4g %.6g %.6g %.6g %.6g %.4g %.3g %.3f\n", run.method.c_str(), run.K,
                  run.D, status.c_str(), stop_time(res, h), e.gain, e.final_change, lowest_z(scene, last), min_z,
                  max_abs_strain(scene, last), res.newton_iterations_per_step(), res.wall_seconds);

@@ -90,6 +90,7 @@ std::string outcome(const RunResult& r) {
   switch (r.status) {
     case RunStatus::ok: return "bounded";
     case RunStatus::diverged: return "diverged";
+    case RunStatus::interrupted: return "interrupted";
     case RunStatus::step_failed: break;
   }
   // A failed step is a failure of the solver, not of stability: say which ("newton not converged").

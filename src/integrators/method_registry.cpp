@@ -2,10 +2,12 @@
 #include "integrators/method_registry.hpp"
 
 #include "base/input_error.hpp"
+#include "base/text.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/symplectic_euler.hpp"
 
-#include <fstream>
+
+#include <sys/stat.h>
 
 namespace cloth {
 
@@ -138,8 +140,10 @@ ButcherTableau tableau_from_argument(const std::string& name_or_path) {
     if (m->name == name_or_path) return *m->tableau;
     names += (names.empty() ? "" : ", ") + m->name;
   }
-  if (std::ifstream(name_or_path).good()) return read_tableau(name_or_path);
-  throw InputError("'" + name_or_path + "' is neither a built-in tableau (" + names + ") nor a readable file");
+  // Anything that exists is taken for a file, so that a folder or a FIFO is refused for what it is.
+  struct stat info {};
+  if (::stat(name_or_path.c_str(), &info) == 0) return read_tableau(name_or_path);
+  throw InputError("'" + escaped(name_or_path) + "' is neither a built-in tableau (" + names + ") nor a readable file");
 }
 
 }  // namespace cloth
