@@ -161,6 +161,7 @@ TEST_CASE("Newton capped at 2 iterations on a stiff step fails, reports step, ti
   rs.t_end = 0.1;
   const cloth::RunResult r = cloth::simulate(runner, rs);
   CHECK(r.status == cloth::RunStatus::step_failed);
+  CHECK(r.failure == cloth::StepFailureKind::newton_not_converged);  // the run carries what stopped the step
   CHECK(r.steps == 0);
   CAPTURE(r.message);
   CHECK(contains(r.message, "step 1, t = 0.01"));

@@ -7,6 +7,7 @@
 #include "base/input_error.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
+#include "model/report_cases.hpp"
 
 #include <memory>
 #include <random>
@@ -156,4 +157,19 @@ TEST_CASE("a free cloth's centre of mass moves exactly as the stepper moves one 
     CHECK(got.y() == doctest::Approx(expected.y()).epsilon(1e-11));
     CHECK(got.z() == doctest::Approx(expected.z()).epsilon(1e-11));
   }
+}
+
+TEST_CASE("the report's cases are (50, 0), (200, 0), (200, 20), named as their folders, and change only K and D") {
+  REQUIRE(report_cases.size() == 3);
+  CHECK(report_cases[0].name() == "K50_D0");
+  CHECK(report_cases[1].name() == "K200_D0");
+  CHECK(report_cases[2].name() == "K200_D20");
+  SceneParams base = params(6, 5, PinSet::edge);
+  base.initial_velocity_z = -3;
+  const SceneParams p = with_case(base, report_cases[2]);
+  CHECK(p.stiffness == 200);
+  CHECK(p.damping == 20);
+  CHECK(p.grid.M == 6);
+  CHECK(p.pins == PinSet::edge);
+  CHECK(p.initial_velocity_z == -3);
 }

@@ -4,6 +4,7 @@
 #include "analysis/fastest_modes.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "model/report_cases.hpp"
 #include "model/single_spring.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
@@ -72,17 +73,9 @@ double measure_single_spring(const SceneParams& params, const RunSettings& run, 
 }
 // [single_spring_measurement]
 
-// The report's three (K, D), run with both methods by --report-runs, each in its own subfolder.
-struct Config {
-  double K, D;
-};
-constexpr Config report_configs[] = {{50, 0}, {200, 0}, {200, 20}};
-
-std::string report_folder(const std::string& method, const Config& c) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%s_K%g_D%g", method.c_str(), c.K, c.D);
-  return name;
-}
+// The report's three (K, D) (model/report_cases.hpp), run with both methods by --report-runs, each in its own
+// subfolder.
+std::string report_folder(const std::string& method, const ReportCase& c) { return method + "_" + c.name(); }
 
 // What each mode writes into --out, so that the folder is checked before anything runs and the files of another
 // mode, left by an earlier run, are removed.
@@ -91,7 +84,7 @@ std::vector<std::string> outputs_of(bool single_spring, bool report_runs) {
   if (!report_runs) return run_output_names();
   std::vector<std::string> names = {"single_spring.dat"};
   for (const std::string& m : chapter_methods)
-    for (const Config& c : report_configs)
+    for (const ReportCase& c : report_cases)
       for (const std::string& file : run_output_names()) names.push_back(report_folder(m, c) + "/" + file);
   return names;
 }
@@ -147,13 +140,8 @@ int main(int argc, char** argv) {
     if (single_spring && opt.scene.damping != 0)
       throw InputError("--single-spring: the growth factor is for D = 0; drop --damping");
     // Every run of --report-runs is checked with the values it uses, before the first one starts.
-    for (const Config& c : report_runs ? std::vector<Config>(std::begin(report_configs), std::end(report_configs))
-                                       : std::vector<Config>{}) {
-      SceneParams p = opt.scene;
-      p.stiffness = c.K;
-      p.damping = c.D;
-      require_representable(p, opt.run);
-    }
+    if (report_runs)
+      for (const ReportCase& c : report_cases) require_representable(with_case(opt.scene, c), opt.run);
     std::vector<std::string> every_output = outputs_of(false, false);  // what any mode writes
     for (const std::string& name : outputs_of(false, true)) every_output.push_back(name);
     prepare_outputs(opt.run.out_dir, outputs_of(single_spring, report_runs), every_output);
@@ -164,10 +152,8 @@ int main(int argc, char** argv) {
     if (!report_runs) return run_cloth(opt.scene, opt.run, method, opt.run.out_dir, cli.program());
 
     for (const std::string& m : chapter_methods)
-      for (const Config& c : report_configs) {
-        SceneParams p = opt.scene;
-        p.stiffness = c.K;
-        p.damping = c.D;
+      for (const ReportCase& c : report_cases) {
+        const SceneParams p = with_case(opt.scene, c);
         // A divergence is a result here; an interruption ends the program (the interrupted run said so).
         if (const int status = run_cloth(p, opt.run, m, opt.run.out_dir + "/" + report_folder(m, c), cli.program());
             status >= 128)

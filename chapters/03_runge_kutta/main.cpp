@@ -5,6 +5,7 @@
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "base/text.hpp"
+#include "model/report_cases.hpp"
 #include "model/single_spring.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/method_registry.hpp"
@@ -57,15 +58,8 @@ int run_cloth(const SceneParams& params, RunSettings run, const ButcherTableau& 
 
 // The report's three (K, D) of --report-runs, each in a subfolder named after the tableau: the name comes from
 // the tableau file, so it is reduced to a safe file name first, and the folder can only ever be inside --out.
-struct Config {
-  double K, D;
-};
-constexpr Config report_configs[] = {{50, 0}, {200, 0}, {200, 20}};
-
-std::string report_folder(const ButcherTableau& tableau, const Config& c) {
-  char suffix[64];
-  std::snprintf(suffix, sizeof suffix, "_K%g_D%g", c.K, c.D);
-  return safe_file_name(tableau.name, 48, "tableau") + suffix;
+std::string report_folder(const ButcherTableau& tableau, const ReportCase& c) {
+  return safe_file_name(tableau.name, 48, "tableau") + "_" + c.name();
 }
 
 std::vector<std::string> single_run_outputs() {
@@ -143,7 +137,7 @@ int main(int argc, char** argv) {
     const bool builtin = tableau.name == tableau_argument;
     const std::string source = builtin ? "builtin" : escaped(tableau_argument);
     std::vector<std::string> report_outputs = {"order.dat"};
-    for (const Config& c : report_configs)
+    for (const ReportCase& c : report_cases)
       for (const std::string& name : single_run_outputs()) report_outputs.push_back(report_folder(tableau, c) + "/" + name);
     if (!report_runs) {
       prepare_outputs(opt.run.out_dir, single_run_outputs(), report_outputs);
@@ -154,17 +148,13 @@ int main(int argc, char** argv) {
     // --dt, and checked as such, with the values each run uses, before the first one starts.
     opt.run.frames = static_cast<int>(std::min<long long>(step_count(opt.run), 100000));
     require_run_memory(opt.scene, opt.run, explicit_bytes_per_particle(), "--t-end");
-    for (const Config& c : report_configs) {
-      SceneParams p = opt.scene;
-      p.stiffness = c.K;
-      p.damping = c.D;
+    for (const ReportCase& c : report_cases) {
+      const SceneParams p = with_case(opt.scene, c);
       require_representable(p, opt.run);
     }
     prepare_outputs(opt.run.out_dir, report_outputs, single_run_outputs());
-    for (const Config& c : report_configs) {
-      SceneParams p = opt.scene;
-      p.stiffness = c.K;
-      p.damping = c.D;
+    for (const ReportCase& c : report_cases) {
+      const SceneParams p = with_case(opt.scene, c);
       // A divergence is a result here; an interruption ends the program (the interrupted run said so).
       if (const int status = run_cloth(p, opt.run, tableau, source, opt.run.out_dir + "/" + report_folder(tableau, c),
                                        cli.program());

@@ -7,6 +7,7 @@
 #include "integrators/implicit_euler.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
+#include "model/report_cases.hpp"
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
 #include "program/limits.hpp"
@@ -44,10 +45,6 @@ struct Outcome {
   std::string method;  // the stepper's name, as run.txt and the failure message give it
 };
 
-double iterations_per_step_of(const RunResult& r) {
-  return r.steps ? static_cast<double>(r.counters.newton_iterations) / static_cast<double>(r.steps) : 0.0;
-}
-
 // One run of the cloth with `newton` (validated before anything was written), outputs in `dir`.
 Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettings& newton, const std::string& dir,
                   const std::string& program) {
@@ -65,7 +62,7 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
                                  {"newton_max_iter", std::to_string(newton.max_iterations)}});
   if (result.steps > 0)
     std::printf("  Newton iterations per step: %.3f (%lld in %lld steps), %lld factorizations\n",
-                static_cast<double>(result.counters.newton_iterations) / static_cast<double>(result.steps),
+                result.newton_iterations_per_step(),
                 result.counters.newton_iterations, result.steps, result.counters.factorizations);
   return {status, std::move(result), stepper.name()};
 }
@@ -75,10 +72,7 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
 // h = 0.01 s (h omega_max ~ 10): exact Jacobian, sparse LU, tolerance tight enough to watch the sequence reach
 // rounding.
 std::vector<double> stiff_step_residuals(const SceneParams& report_scene) {
-  SceneParams p = report_scene;
-  p.stiffness = 1e5;
-  p.damping = 0;
-  const Scene scene(p);
+  const Scene scene(with_K_and_D(report_scene, 1e5, 0));
   ForceField field(scene);
   NewtonSettings newton;
   newton.solver = LinearSolverKind::lu;
@@ -169,16 +163,7 @@ IterationSummary iterations_per_step(const SceneParams& params, const RunSetting
 }
 
 // The report's three (K, D), each run with full Newton and with one iteration, in subfolders of --out.
-struct Config {
-  double K, D;
-};
-constexpr Config report_configs[] = {{50, 0}, {200, 0}, {200, 20}};
-
-std::string report_folder(const char* variant, const Config& c) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%s_K%g_D%g", variant, c.K, c.D);
-  return name;
-}
+std::string report_folder(const char* variant, const ReportCase& c) { return std::string(variant) + "_" + c.name(); }
 
 // The single runs behind the page's other measurements, each in a subfolder: the definite matrix's failure, the
 // stiff cloth at a large step, and conjugate gradients.
@@ -192,7 +177,7 @@ std::vector<std::string> report_outputs() {
   for (const char* fragment : {"report_runs.md", "stiff_step.md", "jacobian_treatments.md", "definite_failure.txt",
                                "stiff_large_step.md", "cg_run.md", "rk4_agreement.md", "rk4_halving_ratio.md"})
     names.emplace_back(fragment);
-  for (const Config& c : report_configs)
+  for (const ReportCase& c : report_cases)
     for (const char* variant : {"full", "one"})
       for (const std::string& file : run_output_names()) names.push_back(report_folder(variant, c) + "/" + file);
   for (const char* folder : measured_run_folders)
@@ -257,7 +242,7 @@ int measured_sentences(const Options& opt, const NewtonSettings& newton, const s
   write_text_fragment(dir + "/stiff_large_step.md",
                       "At h = " + format_number(large_step.dt) + " s it takes " + std::to_string(a.result.steps) +
                           " steps to t = " + format_number(a.result.t) + " s, with " +
-                          format_number(iterations_per_step_of(a.result), 2) + " Newton iterations per step.");
+                          format_number(a.result.newton_iterations_per_step(), 2) + " Newton iterations per step.");
   SceneParams report_scene = opt.scene;
   report_scene.stiffness = 50;
   report_scene.damping = 0;
@@ -274,7 +259,7 @@ int measured_sentences(const Options& opt, const NewtonSettings& newton, const s
       n.newton_iterations ? static_cast<double>(n.cg_iterations) / static_cast<double>(n.newton_iterations) : 0.0;
   write_text_fragment(dir + "/cg_run.md",
                       "On the report scene (K = 50, D = 0) its " + std::to_string(b.result.steps) + " steps to t = " +
-                          format_number(b.result.t) + " s took " + format_number(iterations_per_step_of(b.result), 2) +
+                          format_number(b.result.t) + " s took " + format_number(b.result.newton_iterations_per_step(), 2) +
                           " Newton iterations per step and " + format_number(cg_per_solve, 2) +
                           " CG iterations per solve, " + std::to_string(n.cg_iterations) + " in all.");
   return 0;
@@ -285,9 +270,7 @@ int measured_sentences(const Options& opt, const NewtonSettings& newton, const s
 // should halve with h, the method being of first order. Distances are max norms over all coordinates.
 void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const NewtonSettings& newton,
                         const std::string& dir, const std::string& command) {
-  SceneParams p = report_scene;
-  p.stiffness = 200;
-  p.damping = 20;
+  const SceneParams p = with_K_and_D(report_scene, 200, 20);
   run.t_end = 1;
   const Scene scene(p);
   ForceField field(scene);
@@ -314,7 +297,7 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
     const RunResult r = run_with(implicit, steps[k]);
     distance[k] = (r.x - reference.x).lpNorm<Eigen::Infinity>();
     table.add_row({"implicit Euler, h = " + format_number(steps[k]), format_number(distance[k], 3),
-                   format_fixed(iterations_per_step_of(r), 2)});
+                   format_fixed(r.newton_iterations_per_step(), 2)});
   }
   const double rk4_difference = (rk4_half.x - reference.x).lpNorm<Eigen::Infinity>();
   table.add_row({"RK4, h = " + format_number(steps[1]), format_number(rk4_difference, 2), ""});
@@ -337,10 +320,8 @@ int report_runs(const Options& opt, const std::function<NewtonSettings(double, d
                        "E(2 s) one iteration [J]", "energy lost by 2 s, full",
                        "largest position difference at 2 s [m]"},
                       "lrrrrrr");
-  for (const Config& c : report_configs) {
-    SceneParams p = opt.scene;
-    p.stiffness = c.K;
-    p.damping = c.D;
+  for (const ReportCase& c : report_cases) {
+    const SceneParams p = with_case(opt.scene, c);
     const NewtonSettings full = newton_for(c.K, c.D);
     const Outcome a = run_cloth(p, opt.run, full, dir + "/" + report_folder("full", c), program);
     if (a.status >= 128) return a.status;  // interrupted: the run said so; comparison.dat is not written
@@ -349,17 +330,14 @@ int report_runs(const Options& opt, const std::function<NewtonSettings(double, d
     const Outcome b = run_cloth(p, opt.run, one, dir + "/" + report_folder("one", c), program);
     if (b.status >= 128) return b.status;
     const double diff = a.result.t == b.result.t ? (a.result.x - b.result.x).lpNorm<Eigen::Infinity>() : NAN;
-    const auto per_step = [](const RunResult& r) {
-      return r.steps ? static_cast<double>(r.counters.newton_iterations) / static_cast<double>(r.steps) : 0.0;
-    };
-    std::fprintf(summary, "%g %g %.4f %.4f %lld %lld %.4f %.4f %.8g %.8g %.4e\n", c.K, c.D, per_step(a.result),
-                 per_step(b.result), a.result.counters.factorizations, b.result.counters.factorizations,
+    std::fprintf(summary, "%g %g %.4f %.4f %lld %lld %.4f %.4f %.8g %.8g %.4e\n", c.K, c.D, a.result.newton_iterations_per_step(),
+                 b.result.newton_iterations_per_step(), a.result.counters.factorizations, b.result.counters.factorizations,
                  a.result.wall_seconds, b.result.wall_seconds, a.result.energy.back().energy.total(),
                  b.result.energy.back().energy.total(), diff);
     std::printf("K = %g, D = %g: full Newton %.3f iterations/step, one iteration: largest position difference at "
-                "t = %g s: %.4g m\n", c.K, c.D, per_step(a.result), a.result.t, diff);
+                "t = %g s: %.4g m\n", c.K, c.D, a.result.newton_iterations_per_step(), a.result.t, diff);
     const double E0 = a.result.energy.front().energy.total(), E_full = a.result.energy.back().energy.total();
-    table.add_row({format_number(c.K) + ", " + format_number(c.D), format_fixed(per_step(a.result), 2),
+    table.add_row({format_number(c.K) + ", " + format_number(c.D), format_fixed(a.result.newton_iterations_per_step(), 2),
                    std::to_string(a.result.counters.factorizations) + " / " +
                        std::to_string(b.result.counters.factorizations),
                    format_fixed(E_full, 2), format_fixed(b.result.energy.back().energy.total(), 2),
@@ -369,9 +347,7 @@ int report_runs(const Options& opt, const std::function<NewtonSettings(double, d
   write_table_fragment(dir + "/report_runs.md", table, command);
   write_stiff_step(stiff_step_residuals(opt.scene), dir, command);
   throw_if_interrupted();
-  SceneParams p = opt.scene;
-  p.stiffness = 50;
-  p.damping = 0;
+  const SceneParams p = with_K_and_D(opt.scene, 50, 0);
   NewtonSettings symmetric = newton, definite = newton;
   symmetric.treatment = StiffnessTreatment::symmetric;
   definite.treatment = StiffnessTreatment::definite;
@@ -437,9 +413,7 @@ int main(int argc, char** argv) {
     const auto particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
     // The settings of a run at (K, D): the Newton matrix the solver takes unless --jacobian chose one.
     const auto newton_for = [&](double K, double D) {
-      SceneParams p = opt.scene;
-      p.stiffness = K;
-      p.damping = D;
+      const SceneParams p = with_K_and_D(opt.scene, K, D);
       NewtonSettings s = newton;
       s.treatment = jacobian ? *jacobian : default_treatment(newton.solver, Scene(p).has_damping());
       check_settings(s, Scene(p));
@@ -452,10 +426,8 @@ int main(int argc, char** argv) {
       return run_cloth(opt.scene, opt.run, settings, opt.run.out_dir, cli.program()).status;
     }
     // Every run of --report-runs is checked, with the values it uses, before the first one starts.
-    for (const Config& c : report_configs) {
-      SceneParams p = opt.scene;
-      p.stiffness = c.K;
-      p.damping = c.D;
+    for (const ReportCase& c : report_cases) {
+      const SceneParams p = with_case(opt.scene, c);
       try {
         newton_for(c.K, c.D);
       } catch (const InputError& e) {

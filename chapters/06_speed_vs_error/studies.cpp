@@ -6,6 +6,7 @@
 #include "base/input_error.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
+#include "model/report_cases.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -16,13 +17,6 @@ namespace ch06 {
 using namespace cloth;
 
 namespace {
-
-cloth::SceneParams with(const SceneParams& base, double K, double D) {
-  SceneParams p = base;
-  p.stiffness = K;
-  p.damping = D;
-  return p;
-}
 
 // The implicit rows' settings: CG needs the definite matrix; the direct path is Chapter 4's default, the exact
 // Jacobian with the block factorization it calls for (LDL^T when undamped, LDU when the damper makes it
@@ -159,7 +153,7 @@ void sensitivity(const SceneParams& base, const std::vector<Config>& configs, do
   std::FILE* f = open(sink, "sensitivity.dat", "# config K D t amplification  (blocks by config)");
   const double delta = 1e-12;
   for (const Config& c : configs) {
-    const Scene scene(with(base, c.K, c.D));
+    const Scene scene(with_K_and_D(base, c.K, c.D));
     ForceField fa(scene), fb(scene);
     const auto a = make_stepper("rk4", fa), b = make_stepper("rk4", fb);
     Vector xa = scene.initial_positions(), va = scene.initial_velocities();
@@ -188,7 +182,7 @@ void sensitivity(const SceneParams& base, const std::vector<Config>& configs, do
 // twice as many. Their largest sampled difference is its credential: every error plotted must exceed it 100x.
 Trajectory reference(const SceneParams& base, const Config& c, int samples, int k_ref, const Sink& sink,
                      double& agreement) {
-  const Scene scene(with(base, c.K, c.D));
+  const Scene scene(with_K_and_D(base, c.K, c.D));
   ForceField f1(scene), f2(scene);
   const auto rk4 = make_stepper("rk4", f1), rule38 = make_stepper("rule38", f2);
   const long long n = 1LL << k_ref;
@@ -207,7 +201,7 @@ Trajectory reference(const SceneParams& base, const Config& c, int samples, int 
 // [work_precision]
 void work_precision(const SceneParams& base, const Config& c, const Trajectory& ref, int samples, int k_min,
                     int k_max, double max_seconds, int runs, double ref_agreement, const Sink& sink) {
-  const Scene scene(with(base, c.K, c.D));
+  const Scene scene(with_K_and_D(base, c.K, c.D));
   std::FILE* f = open(sink, "wp_" + c.name + ".dat",
                       "# method h steps seconds err_max_T err_rms rhs assemblies factorizations cg_iterations "
                       "newton_iterations  (blocks by method)");

@@ -24,7 +24,8 @@ class NameTable {
   /// messages list them.
   NameTable(std::string what, std::initializer_list<Entry> entries) : what_(std::move(what)), entries_(entries) {}
 
-  /// The value called `name`. Throws InputError "unknown <what> 'name': expected one of a, b, c" otherwise.
+  /// The value called `name`. Throws InputError "unknown linear solver 'qr': expected one of ldlt, ..." otherwise
+  /// (the setting named by what()).
   [[nodiscard]] Enum parse(const std::string& name) const {
     for (const Entry& e : entries_)
       if (name == e.name) return e.value;

@@ -79,7 +79,6 @@ Method explicit_runge_kutta(const char* name, const char* title, int order,
 }  // namespace
 
 const std::vector<Method>& methods() {
-  // [method_table]
   static const std::vector<Method> table = {
       // [explicit_euler_row]
       // Explicit Euler (Chapter 2): one stage at the start of the step, x1 = x0 + h v0, v1 = v0 + h a(x0, v0).
@@ -90,6 +89,7 @@ const std::vector<Method>& methods() {
       // it has a stepper of its own, and no scalar R(z): on a mode it acts as a 2 x 2 matrix (Chapter 7).
       {"symplectic_euler", "symplectic Euler", MethodFamily::partitioned, 1, std::nullopt, nullptr,
        make_symplectic_euler},
+      // [runge_kutta_rows]
       // Chapter 3's explicit Runge-Kutta methods (Butcher 2016, Hairer, Norsett & Wanner 1993, II.1).
       explicit_runge_kutta("heun", "Heun", 2, {{0, 0}, {1, 0}}, {0.5, 0.5}, taylor_of_exp<2>),
       explicit_runge_kutta("midpoint", "explicit midpoint", 2, {{0, 0}, {0.5, 0}}, {0, 1}, taylor_of_exp<2>),
@@ -99,13 +99,13 @@ const std::vector<Method>& methods() {
                            {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}, taylor_of_exp<4>),
       explicit_runge_kutta("rule38", "3/8 rule", 4, {{0, 0, 0, 0}, {1.0 / 3, 0, 0, 0}, {-1.0 / 3, 1, 0, 0}, {1, -1, 1, 0}},
                            {1.0 / 8, 3.0 / 8, 3.0 / 8, 1.0 / 8}, taylor_of_exp<4>),
+      // [runge_kutta_rows]
       // Implicit Euler (Chapter 4): the one-stage tableau A = [1], b = [1]. Its stepper is Chapter 4's Newton
       // solver for that one stage; NewtonSettings choose the variant (full, one), the linear solver and the
       // Jacobian treatment.
       {"implicit_euler", "implicit Euler", MethodFamily::implicit_runge_kutta, 1, tableau("implicit_euler", 1, {{1}}, {1}),
        implicit_euler_stability_function, make_implicit_euler},
   };
-  // [method_table]
   return table;
 }
 
