@@ -7,6 +7,7 @@
 #include "analysis/lattice_frequency.hpp"
 #include "base/input_error.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/symplectic_euler.hpp"
 #include "model/fabric.hpp"
 #include "model/force_field.hpp"
