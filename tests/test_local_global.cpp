@@ -4,6 +4,7 @@
 
 #include "integrators/implicit_euler.hpp"
 #include "integrators/local_global.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/symplectic_euler.hpp"
 #include "base/input_error.hpp"
 
@@ -94,6 +95,19 @@ TEST_CASE("local/global factors once per step size and refuses fewer than one it
   REQUIRE(lg.step(0.005, x, v));
   CHECK(lg.counters().factorizations == 2);
   CHECK(lg.counters().steps == 6);
-  CHECK(lg.name() == "local_global_3");
+  CHECK(lg.name() == "local_global");
   CHECK_THROWS_AS(LocalGlobal(field, 0), InputError);
+}
+
+TEST_CASE("the registry makes local/global with the iterations its settings ask for") {
+  const Scene scene(stiff_light_cloth(0.01));
+  ForceField field(scene);
+  MethodSettings settings;
+  settings.local_global_iterations = 7;
+  const auto stepper = make_stepper("local_global", field, settings);
+  REQUIRE(stepper->name() == "local_global");
+  Vector x = scene.initial_positions(), v = scene.initial_velocities();
+  REQUIRE(stepper->step(0.01, x, v));
+  CHECK(stepper->counters().linear_solves == 7);
+  CHECK(find_method("local_global").order == 1);
 }

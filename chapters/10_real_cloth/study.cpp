@@ -1,7 +1,7 @@
 // Chapter 10's measuring tools (see study.hpp).
 #include "study.hpp"
 
-#include "integrators/butcher_tableau.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/local_global.hpp"
@@ -42,7 +42,7 @@ std::unique_ptr<Stepper> make_method(const std::string& name, ForceField& field)
   cg.cg_tolerance = 1e-8;
   if (name == "ie_newton_direct") return std::make_unique<ImplicitEuler>(field, newton);
   if (name == "ie_newton_cg") return std::make_unique<ImplicitEuler>(field, cg);
-  newton.max_iterations = cg.max_iterations = 1;
+  newton.variant = cg.variant = NewtonVariant::one;  // Baraff and Witkin's single linearised step
   if (name == "ie_1newton_direct") return std::make_unique<ImplicitEuler>(field, newton);
   if (name == "ie_1newton_cg") return std::make_unique<ImplicitEuler>(field, cg);
   if (name.rfind("local_global_", 0) == 0) return std::make_unique<LocalGlobal>(field, std::stoi(name.substr(13)));

@@ -28,7 +28,7 @@ LocalGlobal::LocalGlobal(ForceField& field, int iterations) : Stepper(field), it
   y_.setZero(n, 3), b_.setZero(n, 3), X_.setZero(n, 3), scratch_.setZero(n, 3), x0_.setZero(n, 3);
 }
 
-std::string LocalGlobal::name() const { return "local_global_" + std::to_string(iterations_); }
+std::string LocalGlobal::name() const { return "local_global"; }
 
 bool LocalGlobal::factor(double h) {
   const Scene& scene = field_.scene();

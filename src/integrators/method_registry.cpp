@@ -4,6 +4,7 @@
 #include "base/input_error.hpp"
 #include "base/text.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/local_global.hpp"
 #include "integrators/symplectic_euler.hpp"
 
 
@@ -68,6 +69,10 @@ std::unique_ptr<Stepper> make_implicit_euler(const Method& /*m*/, ForceField& fi
   return std::make_unique<ImplicitEuler>(field, settings.newton);
 }
 
+std::unique_ptr<Stepper> make_local_global(const Method& /*m*/, ForceField& field, const MethodSettings& settings) {
+  return std::make_unique<LocalGlobal>(field, settings.local_global_iterations);
+}
+
 // A row of the explicit Runge-Kutta family: the tableau carries the method's name and order.
 Method explicit_runge_kutta(const char* name, const char* title, int order,
                             std::initializer_list<std::initializer_list<double>> A, std::initializer_list<double> b,
@@ -105,6 +110,12 @@ const std::vector<Method>& methods() {
       // Jacobian treatment.
       {"implicit_euler", "implicit Euler", MethodFamily::implicit_runge_kutta, 1, tableau("implicit_euler", 1, {{1}}, {1}),
        implicit_euler_stability_function, make_implicit_euler},
+      // Local/global (Chapter 10; Liu, Bargteil, O'Brien & Kavan 2013): implicit Euler's step again, its equations
+      // solved by a fixed number of alternating spring projections and solves with a constant matrix instead of
+      // Newton's method. Converged, it is implicit Euler; with few iterations it is a method of its own, so it
+      // has no tableau and no scalar R(z) here.
+      {"local_global", "local/global", MethodFamily::implicit_runge_kutta, 1, std::nullopt, nullptr,
+       make_local_global},
   };
   return table;
 }

@@ -33,6 +33,7 @@ const NameTable<MethodFamily>& method_families();
 /// The settings a method's factory may read. Explicit methods read none; implicit ones read Newton's.
 struct MethodSettings {
   NewtonSettings newton;
+  int local_global_iterations = 10;  ///< local/global iterations per step (Chapter 10; Liu et al. 2013 use ~10)
 };
 
 /// One row of the registry.
