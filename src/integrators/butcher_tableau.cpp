@@ -139,7 +139,7 @@ bool parse_entry(const std::string& token, double& value) {
 
 }  // namespace
 
-ButcherTableau parse_tableau(const std::string& text, const std::string& source) {
+ButcherTableau parse_tableau_entries(const std::string& text, const std::string& source) {
   ButcherTableau t;
   t.name = source;
   t.order = 0;
@@ -205,6 +205,11 @@ ButcherTableau parse_tableau(const std::string& text, const std::string& source)
     for (int j = 0; j < s; ++j) t.A(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j + 1)];
   }
   t.b = Eigen::Map<const Eigen::VectorXd>(b.data(), s);
+  return t;
+}
+
+ButcherTableau parse_tableau(const std::string& text, const std::string& source) {
+  ButcherTableau t = parse_tableau_entries(text, source);
   try {
     validate(t);
   } catch (const InputError& e) {
@@ -213,13 +218,15 @@ ButcherTableau parse_tableau(const std::string& text, const std::string& source)
   return t;
 }
 
-ButcherTableau read_tableau(const std::string& path) {
+std::string read_tableau_text(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot read tableau file '" + path + "'");
   std::stringstream text;
   text << in.rdbuf();
-  return parse_tableau(text.str(), path);
+  return text.str();
 }
+
+ButcherTableau read_tableau(const std::string& path) { return parse_tableau(read_tableau_text(path), path); }
 
 ButcherTableau tableau_from_argument(const std::string& name_or_path) {
   std::string names;

@@ -41,4 +41,11 @@ ButcherTableau read_tableau(const std::string& path);
 /// Parses that format from text; `source` names it in error messages.
 ButcherTableau parse_tableau(const std::string& text, const std::string& source);
 
+/// The same format read without validate(): the shapes are checked, the method is not. For engines that accept
+/// other tableaus than the explicit engine (Chapter 9's diagonally implicit ones), which validate them their way.
+ButcherTableau parse_tableau_entries(const std::string& text, const std::string& source);
+
+/// The whole text of a tableau file; throws InputError when it cannot be read.
+std::string read_tableau_text(const std::string& path);
+
 }  // namespace cloth
