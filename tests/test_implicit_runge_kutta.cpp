@@ -1,6 +1,7 @@
 // Chapter 9's implicit methods: the recorded states of Chapter 4's implicit Euler reproduced by the backward_euler
 // tableau, observed orders against the closed form, implicit midpoint's exact energy on a linear oscillator,
 // modified against full Newton, BDF2, and the tableaus the engine refuses.
+#include "analysis/stability_function.hpp"
 #include "base/input_error.hpp"
 #include "integrators/bdf2.hpp"
 #include "integrators/diagonally_implicit_runge_kutta.hpp"
@@ -225,4 +226,47 @@ TEST_CASE("a fully implicit tableau (two-stage Gauss) is refused with a message 
   ImplicitTableau wrong = tableau("sdirk2");
   wrong.method.order = 3;
   CHECK_THROWS_AS(validate(wrong), InputError);
+}
+
+TEST_CASE("R(z) of the implicit tableaus matches the closed forms; R(infinity) and A-stability from the tableau") {
+  const double g = 1 - std::sqrt(2.0) / 2;
+  const Complex points[] = {{-0.5, 0}, {-3, 2}, {0.2, -1.5}, {-40, 7}, {0, 5}};
+  for (const Complex z : points) {
+    INFO("z = " << z.real() << " + " << z.imag() << " i");
+    CHECK(std::abs(stability_function(tableau("backward_euler").method, z) - 1.0 / (1.0 - z)) <= 1e-14);
+    const Complex pade11 = (1.0 + z / 2.0) / (1.0 - z / 2.0);
+    CHECK(std::abs(stability_function(tableau("implicit_midpoint").method, z) - pade11) <= 1e-13);
+    CHECK(std::abs(stability_function(tableau("trapezoid").method, z) - pade11) <= 1e-13);
+    // Two-stage SDIRK, stiffly accurate: R = (1 + (1 - 2 gamma) z) / (1 - gamma z)^2.
+    const Complex sdirk2 = (1.0 + (1 - 2 * g) * z) / ((1.0 - g * z) * (1.0 - g * z));
+    CHECK(std::abs(stability_function(tableau("sdirk2").method, z) - sdirk2) <= 1e-13);
+  }
+  // Order p means R(z) = e^z + O(z^(p+1)): at z = 1e-2 the difference is about z^(p+1) / (p+1)! or smaller.
+  for (const ImplicitTableau& t : builtin_implicit_tableaus()) {
+    const int p = t.method.order;
+    const double small = 1e-2;
+    const double defect = std::abs(stability_function(t.method, small) - std::exp(small));
+    INFO(t.method.name);
+    CHECK(defect <= std::pow(small, p + 1));
+    CHECK(defect >= 1e-3 * std::pow(small, p + 2));
+    CHECK(a_stable(t.method));
+  }
+  // Extrapolated from |z| = 1e4 to 4e4: accurate to about 1e-11.
+  CHECK(std::abs(stability_at_infinity(tableau("implicit_midpoint").method) + 1) <= 1e-10);
+  CHECK(std::abs(stability_at_infinity(tableau("trapezoid").method) + 1) <= 1e-10);
+  for (const char* name : {"backward_euler", "sdirk2", "sdirk3", "trbdf2"}) {
+    INFO(std::string(name));
+    CHECK(std::abs(stability_at_infinity(tableau(name).method)) <= 1e-10);
+  }
+  // An explicit method is not A-stable, and R grows without bound.
+  for (const ButcherTableau& t : builtin_tableaus()) {
+    CHECK_FALSE(a_stable(t));
+    CHECK(std::isinf(stability_at_infinity(t)));
+  }
+  // A DIRK with a diagonal below 1/4 on two stages: gamma = 0.2 loses A-stability (the SDIRK2 family is A-stable
+  // for gamma >= 1/4).
+  ImplicitTableau weak = tableau("sdirk2");
+  weak.method.A << 0.2, 0, 0.8, 0.2;
+  weak.method.b = Eigen::Vector2d(0.8, 0.2);
+  CHECK_FALSE(a_stable(weak.method));
 }
