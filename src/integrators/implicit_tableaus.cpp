@@ -2,10 +2,11 @@
 #include "integrators/implicit_tableaus.hpp"
 
 #include "base/input_error.hpp"
+#include "base/text.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
+#include <sys/stat.h>
 
 namespace cloth {
 
@@ -147,8 +148,10 @@ ImplicitTableau implicit_tableau_from_argument(const std::string& name_or_path) 
     if (t.method.name == name_or_path) return t;
     names += (names.empty() ? "" : ", ") + t.method.name;
   }
-  if (!std::ifstream(name_or_path).good())
-    throw InputError("'" + name_or_path + "' is neither a built-in implicit tableau (" + names +
+  // Anything that exists is taken for a file, so that a folder or a FIFO is refused for what it is.
+  struct stat info {};
+  if (::stat(name_or_path.c_str(), &info) != 0)
+    throw InputError("'" + escaped(name_or_path) + "' is neither a built-in implicit tableau (" + names +
                      ") nor a readable file");
   ImplicitTableau t;
   t.method = parse_tableau_entries(read_tableau_text(name_or_path), name_or_path);
@@ -156,7 +159,7 @@ ImplicitTableau implicit_tableau_from_argument(const std::string& name_or_path) 
   try {
     validate(t);
   } catch (const InputError& e) {
-    throw InputError(name_or_path + ": " + e.what());
+    throw InputError(escaped(name_or_path) + ": " + e.what());
   }
   return t;
 }
