@@ -4,7 +4,7 @@
 #include "program/command_line.hpp"
 #include "base/input_error.hpp"
 #include "integrators/butcher_tableau.hpp"
-#include "integrators/methods.hpp"
+#include "integrators/method_registry.hpp"
 #include "program_runner.hpp"
 
 #include <doctest/doctest.h>
@@ -229,6 +229,8 @@ TEST_CASE("ch01_springs: good input does write its folder (so the checks above c
 #ifdef CLOTH_HAVE_CH02_EXPLICIT_EULER
 TEST_CASE("ch02_explicit_euler: bad input gives status 2, one line naming the flag, nothing written") {
   expect_refused("ch02_explicit_euler", shared_flag_cases());
+  expect_refused("ch02_explicit_euler",
+                 {{{"--method", "rk4"}, {"--method", "'rk4'", "explicit_euler", "symplectic_euler"}}});
 }
 #endif
 
@@ -269,6 +271,8 @@ TEST_CASE("ch04_implicit_euler: bad Newton and linear-solver settings are refuse
                      {{"--jacobian", "numeric"}, {"--jacobian", "'numeric'", "exact", "symmetric", "definite"}},
                      {{"--linear-solver", "cg", "--jacobian", "symmetric"}, {"--linear-solver cg", "definite"}},
                      {{"--damping", "1", "--linear-solver", "ldlt", "--jacobian", "exact"}, {"--linear-solver ldlt", "lu"}},
+                     {{"--newton", "two"}, {"--newton", "'two'", "full", "modified", "one"}},
+                     {{"--newton", "modified"}, {"--newton modified", "not implemented", "full or one"}},
                  });
 }
 #endif
@@ -289,7 +293,7 @@ TEST_CASE("ch09_implicit_runge_kutta: fully implicit tableaus, --tol without a p
                      {{"--tableau", "trbdf2", "--tol", "0"}, {"--tol", "(0, 1)"}},
                      {{"--newton", "quasi"}, {"--newton", "'quasi'", "full", "modified", "one"}},
                      {{"--newton", "one", "--newton-max-iter", "5"}, {"--newton-max-iter", "one iteration"}},
-                     {{"--linear-solver", "cg", "--jacobian", "exact"}, {"--linear-solver cg", "definite"}},
+                     {{"--linear-solver", "cg", "--jacobian", "exact"}, {"--linear-solver", "cg", "definite"}},
                      {{"--newton-tol", "2"}, {"--newton-tol", "(0, 1)"}},
                  });
 }

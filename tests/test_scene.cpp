@@ -5,9 +5,8 @@
 
 #include "model/force_field.hpp"
 #include "base/input_error.hpp"
-#include "integrators/explicit_euler.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
-#include "integrators/symplectic_euler.hpp"
 
 #include <memory>
 #include <random>
@@ -94,9 +93,7 @@ TEST_CASE("pinned particles never move during a run, for every pin set and both 
       p.damping = 2.0;
       const Scene scene(p);
       ForceField field(scene);
-      std::unique_ptr<Stepper> stepper;
-      if (symplectic) stepper = std::make_unique<SymplecticEuler>(field);
-      else stepper = std::make_unique<ExplicitEuler>(field);
+      const auto stepper = make_stepper(symplectic ? "symplectic_euler" : "explicit_euler", field);
       RunSettings run;
       run.dt = 0.002;
       run.t_end = 0.2;
@@ -135,9 +132,7 @@ TEST_CASE("a free cloth's centre of mass moves exactly as the stepper moves one 
     const Scene scene(p);
     CHECK(scene.dof_count() == 3 * 7 * 4);
     ForceField field(scene);
-    std::unique_ptr<Stepper> stepper;
-    if (symplectic) stepper = std::make_unique<SymplecticEuler>(field);
-    else stepper = std::make_unique<ExplicitEuler>(field);
+    const auto stepper = make_stepper(symplectic ? "symplectic_euler" : "explicit_euler", field);
 
     std::mt19937 rng(21);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);

@@ -7,6 +7,7 @@
 #include "base/text.hpp"
 #include "model/single_spring.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
@@ -73,6 +74,13 @@ std::vector<std::string> single_run_outputs() {
   return names;
 }
 
+// The registry's explicit Runge-Kutta methods: "explicit_euler, heun, ...".
+std::string tableau_names() {
+  std::string names;
+  for (const Method* m : methods_of(MethodFamily::explicit_runge_kutta)) names += (names.empty() ? "" : ", ") + m->name;
+  return names;
+}
+
 // [observed_order]
 // Error at t = 1 s of every built-in tableau on the damped single spring (K = 50, D = 2, m = 1), against the
 // closed form, for h = 0.1 / 2^k; writes order.dat (h, then one error column per tableau). The error is the
@@ -86,13 +94,14 @@ void measure_orders(const std::string& dir) {
   OutputFile file(dir + "/order.dat");
   std::FILE* out = file.get();
   std::fprintf(out, "# h");
-  for (const ButcherTableau& t : builtin_tableaus()) std::fprintf(out, " %s", t.name.c_str());
+  const std::vector<const Method*> tableaus = methods_of(MethodFamily::explicit_runge_kutta);
+  for (const Method* m : tableaus) std::fprintf(out, " %s", m->name.c_str());
   std::fprintf(out, "\n");
   for (int k = 1; k <= 10; ++k) {
     const double h = 0.1 / std::pow(2.0, k);
     std::fprintf(out, "%.10g", h);
-    for (const ButcherTableau& t : builtin_tableaus()) {
-      ExplicitRungeKutta stepper(field, t);
+    for (const Method* m : tableaus) {
+      ExplicitRungeKutta stepper(field, *m->tableau);
       Vector x, v;
       single_spring_initial_state(scene, s0, x, v);
       const Vector rest = scene.initial_positions();
@@ -117,7 +126,7 @@ int main(int argc, char** argv) {
   CommandLine cli("ch03_runge_kutta",
                   "Chapter 3: an explicit Runge-Kutta method from its Butcher tableau on the report's cloth.");
   cli.add_value("--tableau", "NAME|FILE",
-                "a built-in tableau (euler, heun, midpoint, kutta3, rk4, rule38; default rk4) or a tableau file",
+                "an explicit Runge-Kutta method of the registry (" + tableau_names() + "; default rk4) or a tableau file",
                 [&](const std::string& s) { tableau_argument = s; });
   cli.add_switch("--report-runs",
                  "the chosen tableau on the report's (K, D) = (50,0), (200,0), (200,20), one subfolder of --out each, "

@@ -5,7 +5,7 @@
 #include "analysis/fastest_modes.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/methods.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/run_outputs.hpp"
 #include "run_pool.hpp"
@@ -23,7 +23,7 @@ using namespace cloth::ch05;
 
 namespace {
 
-const std::vector<std::string> methods = {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler"};
+const std::vector<std::string> chapter_methods = {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler"};
 const std::vector<std::string> method_titles = {"explicit Euler", "symplectic Euler", "RK4", "implicit Euler"};
 
 // [report_grid]
@@ -183,10 +183,10 @@ int main(int argc, char** argv) {
 
     // The jobs: the twelve runs of the figures, then the sweep; implicit Euler first, as it is the slowest.
     std::vector<Run> runs;
-    for (const std::string& m : methods)
+    for (const std::string& m : chapter_methods)
       for (const Config& c : configs) runs.push_back({m, c.K, c.D, T, true, {}});
     if (sweep)
-      for (const std::string& m : methods)
+      for (const std::string& m : chapter_methods)
         for (double K : sweep_K)
           for (double D : sweep_D) runs.push_back({m, K, D, m == "implicit_euler" ? sweep_t_end_implicit : T, false, {}});
     std::vector<std::size_t> order(runs.size());
@@ -234,7 +234,7 @@ int main(int argc, char** argv) {
                 "E gain", "E(T)/E0-1", "sag_T", "min z", "max strain");
     // gnuplot reads the figures' bookkeeping from runs.gp: which block of each mesh file to draw, and the labels.
     std::string gp_names, gp_titles, gp_status, gp_reached, gp_box, gp_blocks, gp_labels, gp_instants, gp_logscale, gp_sag_low;
-    for (std::size_t r = 0; r < methods.size() * configs.size(); ++r) {
+    for (std::size_t r = 0; r < chapter_methods.size() * configs.size(); ++r) {
       const Run& run = runs[r];
       const RunResult& res = run.result;
       const std::string name = run_name(run.method, run.K, run.D);
@@ -307,7 +307,7 @@ int main(int argc, char** argv) {
     // the bounded runs (exploding ones leave it, which the plot says).
     for (std::size_t c = 0; c < configs.size(); ++c) {
       double worst_gain = 0, low = 0;
-      for (std::size_t m = 0; m < methods.size(); ++m) {
+      for (std::size_t m = 0; m < chapter_methods.size(); ++m) {
         const Run& run = runs[m * configs.size() + c];
         worst_gain = std::max(worst_gain, energy_measures(run.result.energy).gain);
         if (!diverged(run.result) && energy_measures(run.result.energy).gain < 1.0)
@@ -319,10 +319,10 @@ int main(int argc, char** argv) {
 
     std::FILE* gp = std::fopen((dir + "runs.gp").c_str(), "w");
     const auto n = [](std::size_t k) { return std::to_string(k); };
-    const std::size_t nr = methods.size() * configs.size();
+    const std::size_t nr = chapter_methods.size() * configs.size();
     std::fprintf(gp, "# Written by ch05_report_figures: the bookkeeping of plot.gp. Run r = m*%zu + c + 1.\n",
                  configs.size());
-    std::fprintf(gp, "h = %g\nt_end = %g\nnmethods = %zu\nnconfigs = %zu\nninstants = %zu\n", h, T, methods.size(),
+    std::fprintf(gp, "h = %g\nt_end = %g\nnmethods = %zu\nnconfigs = %zu\nninstants = %zu\n", h, T, chapter_methods.size(),
                  configs.size(), sheet_fractions.size());
     std::string ks, ds;
     for (std::size_t c = 0; c < configs.size(); ++c)
@@ -343,7 +343,7 @@ int main(int argc, char** argv) {
     std::string fig_runs, fig_captions, fig_numbers;
     for (std::size_t f = 0; f < report_figures.size(); ++f) {
       const ReportFigure& rf = report_figures[f];
-      const std::size_t m = static_cast<std::size_t>(std::find(methods.begin(), methods.end(), rf.method) - methods.begin());
+      const std::size_t m = static_cast<std::size_t>(std::find(chapter_methods.begin(), chapter_methods.end(), rf.method) - chapter_methods.begin());
       const Config& c = configs[static_cast<std::size_t>(rf.config)];
       add(fig_runs, n(m * configs.size() + static_cast<std::size_t>(rf.config) + 1));
       add(fig_numbers, std::to_string(rf.number));
@@ -400,7 +400,7 @@ int main(int argc, char** argv) {
                    "# energy_gain = max_t (E(t)-E(0))/|E(0)| (>= 0; 0 for a method that never adds energy), "
                    "energy_final_change = (E(T)-E(0))/|E(0)|; NaN for a diverged run\n");
       std::size_t r = nr;
-      for (std::size_t m = 0; m < methods.size(); ++m) {
+      for (std::size_t m = 0; m < chapter_methods.size(); ++m) {
         for (std::size_t ki = 0; ki < sweep_K.size(); ++ki)
           for (std::size_t di = 0; di < sweep_D.size(); ++di, ++r) {
             const Run& run = runs[r];

@@ -6,6 +6,7 @@
 #include "base/input_error.hpp"
 #include "integrators/bdf2.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/implicit_step_control.hpp"
 #include "integrators/simulate.hpp"
 #include "program/output.hpp"
@@ -324,7 +325,11 @@ int main(int argc, char** argv) {
     else if (choice.newton.solver == LinearSolverKind::ldlt && damped)
       choice.newton.treatment = StiffnessTreatment::symmetric;
     else choice.newton.treatment = StiffnessTreatment::exact;
-    validate(choice.newton, Scene(opt.scene));
+    try {
+      validate(choice.newton, Scene(opt.scene));
+    } catch (const InputError& e) {
+      throw InputError(std::string("--linear-solver / --jacobian: ") + e.what());
+    }
     if (want_report_runs) {
       report_runs(opt, choice.newton, quick, cli.program());
       return 0;

@@ -6,6 +6,7 @@
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/output.hpp"
 

@@ -1,6 +1,7 @@
-// Butcher tableaus: the built-in methods, the order conditions that check them, and the tableau file format.
+// Butcher tableaus: the order conditions that check them, and the tableau file format.
 #include "integrators/butcher_tableau.hpp"
 
+#include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "base/text.hpp"
 #include "base/text_file.hpp"
@@ -13,50 +14,10 @@ namespace cloth {
 
 namespace {
 
-std::string fmt(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
 // Rounding tolerance of the checks: tableaus are given as fractions, so their conditions hold to a few ulps.
 constexpr double tolerance = 1e-12;
 
-ButcherTableau make(std::string name, int order, std::initializer_list<std::initializer_list<double>> A,
-                    std::initializer_list<double> b) {
-  ButcherTableau t;
-  t.name = std::move(name);
-  t.order = order;
-  const int s = static_cast<int>(b.size());
-  t.A = Eigen::MatrixXd::Zero(s, s);
-  int i = 0;
-  for (const auto& row : A) {
-    int j = 0;
-    for (double a : row) t.A(i, j++) = a;
-    ++i;
-  }
-  t.b = Eigen::Map<const Eigen::VectorXd>(b.begin(), s);
-  t.c = t.A.rowwise().sum();
-  return t;
-}
-
 }  // namespace
-
-const std::vector<ButcherTableau>& builtin_tableaus() {
-  // [builtin_tableaus]
-  static const std::vector<ButcherTableau> tableaus = {
-      make("euler", 1, {{0}}, {1}),
-      make("heun", 2, {{0, 0}, {1, 0}}, {0.5, 0.5}),
-      make("midpoint", 2, {{0, 0}, {0.5, 0}}, {0, 1}),
-      make("kutta3", 3, {{0, 0, 0}, {0.5, 0, 0}, {-1, 2, 0}}, {1.0 / 6, 2.0 / 3, 1.0 / 6}),
-      make("rk4", 4, {{0, 0, 0, 0}, {0.5, 0, 0, 0}, {0, 0.5, 0, 0}, {0, 0, 1, 0}}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}),
-      make("rule38", 4, {{0, 0, 0, 0}, {1.0 / 3, 0, 0, 0}, {-1.0 / 3, 1, 0, 0}, {1, -1, 1, 0}},
-           {1.0 / 8, 3.0 / 8, 3.0 / 8, 1.0 / 8}),
-  };
-  // [builtin_tableaus]
-  return tableaus;
-}
 
 double order_condition_defect(const ButcherTableau& t, int p) {
   const Eigen::VectorXd& b = t.b;
@@ -94,14 +55,14 @@ void validate(const ButcherTableau& t) {
   for (int i = 0; i < s; ++i)
     for (int j = i; j < s; ++j)
       if (t.A(i, j) != 0.0)
-        throw InputError(who + "a_" + std::to_string(i + 1) + std::to_string(j + 1) + " = " + fmt(t.A(i, j)) +
+        throw InputError(who + "a_" + std::to_string(i + 1) + std::to_string(j + 1) + " = " + format_number(t.A(i, j), 17) +
                          " is on or above the diagonal: the method is implicit, and this engine runs explicit "
                          "methods only (A strictly lower triangular)");
   for (int i = 0; i < s; ++i) {
     const double row_sum = t.A.row(i).sum();
     if (std::abs(t.c[i] - row_sum) > tolerance)
-      throw InputError(who + "row " + std::to_string(i + 1) + ": c_" + std::to_string(i + 1) + " = " + fmt(t.c[i]) +
-                       " but the row sum of A is " + fmt(row_sum) + " (consistency needs c_i = sum_j a_ij)");
+      throw InputError(who + "row " + std::to_string(i + 1) + ": c_" + std::to_string(i + 1) + " = " + format_number(t.c[i], 17) +
+                       " but the row sum of A is " + format_number(row_sum, 17) + " (consistency needs c_i = sum_j a_ij)");
   }
   if (t.order < 1 || t.order > 4)
     throw InputError(who + "claims order " + std::to_string(t.order) + ": expected an order from 1 to 4 (the "
@@ -117,7 +78,7 @@ void validate(const ButcherTableau& t) {
     const double defect = order_condition_defect(t, p);
     if (defect > tolerance)
       throw InputError(who + "claims order " + std::to_string(t.order) + " but the order-" + std::to_string(p) +
-                       " condition " + conditions[p] + " fails by " + fmt(defect));
+                       " condition " + conditions[p] + " fails by " + format_number(defect, 17));
   }
   // A claim below what the conditions give would label the method's results (the observed order of Chapter 3,
   // the tables of Chapter 6) with the wrong order.
@@ -238,21 +199,6 @@ std::string read_tableau_text(const std::string& path) {
   return read_text_file(path, 64 * 1024);
 }
 
-ButcherTableau read_tableau(const std::string& path) {
-  return parse_tableau(read_tableau_text(path), path);
-}
-
-
-ButcherTableau tableau_from_argument(const std::string& name_or_path) {
-  std::string names;
-  for (const ButcherTableau& t : builtin_tableaus()) {
-    if (t.name == name_or_path) return t;
-    names += (names.empty() ? "" : ", ") + t.name;
-  }
-  // Anything that exists is taken for a file, so that a folder or a FIFO is refused for what it is.
-  struct stat info {};
-  if (::stat(name_or_path.c_str(), &info) == 0) return read_tableau(name_or_path);
-  throw InputError("'" + escaped(name_or_path) + "' is neither a built-in tableau (" + names + ") nor a readable file");
-}
+ButcherTableau read_tableau(const std::string& path) { return parse_tableau(read_tableau_text(path), path); }
 
 }  // namespace cloth

@@ -1,5 +1,5 @@
-// The Butcher tableau (A, b, c) of an explicit Runge-Kutta method, its validation against the order conditions,
-// the built-in methods of Chapter 3, and the small text format a reader can write a tableau in.
+// The Butcher tableau (A, b, c) of a Runge-Kutta method, its validation against the order conditions, and the
+// small text format a reader can write a tableau in. The book's own tableaus are rows of the method registry.
 #pragma once
 
 #include <Eigen/Core>
@@ -28,13 +28,6 @@ void validate(const ButcherTableau& tableau);
 
 /// The largest |residual| of the order conditions of order p (p = 1..4); 0 for a method of order >= p.
 double order_condition_defect(const ButcherTableau& tableau, int p);
-
-/// The built-in tableaus: euler, heun, midpoint, kutta3, rk4, rule38.
-const std::vector<ButcherTableau>& builtin_tableaus();
-
-/// A built-in tableau by name, or else a tableau file by path. Throws InputError listing the accepted names
-/// when neither exists, or naming the line that is wrong in a file.
-ButcherTableau tableau_from_argument(const std::string& name_or_path);
 
 /// Reads the text format of Chapter 3 (see chapters/03_runge_kutta/rk4_report.tableau) from a regular file of
 /// printable text and at most 64 KiB (base/text_file.hpp). Throws InputError naming the file and what is wrong:

@@ -14,10 +14,6 @@ const ImplicitTableau& backward_euler() {
 ImplicitEuler::ImplicitEuler(ForceField& field, NewtonSettings settings)
     : DiagonallyImplicitRungeKutta(field, backward_euler(), settings) {}
 
-std::string ImplicitEuler::name() const {
-  std::string n = settings().one_iteration() ? "implicit_euler_1newton" : "implicit_euler";
-  if (settings().variant == NewtonVariant::modified && !settings().one_iteration()) n += "_modified";
-  return n + "_" + linear_solver_name(settings().solver);
-}
+std::string ImplicitEuler::name() const { return "implicit_euler"; }
 
 }  // namespace cloth

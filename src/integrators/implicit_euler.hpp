@@ -10,8 +10,8 @@
 
 namespace cloth {
 
-/// The backward_euler tableau on the stage machinery, named as Chapter 4 names it ("implicit_euler_ldu",
-/// "implicit_euler_1newton_ldlt", ...).
+/// The backward_euler tableau on the stage machinery, under the name the method registry gives it
+/// ("implicit_euler"); the Newton variant and the solver are settings, written beside it in run.txt.
 class ImplicitEuler final : public DiagonallyImplicitRungeKutta {
  public:
   ImplicitEuler(ForceField& field, NewtonSettings settings);

@@ -7,29 +7,25 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 
 namespace cloth {
 
-const char* linear_solver_name(LinearSolverKind kind) {
-  switch (kind) {
-    case LinearSolverKind::ldlt: return "ldlt";
-    case LinearSolverKind::ldu: return "ldu";
-    case LinearSolverKind::cg: return "cg";
-    case LinearSolverKind::lu: return "lu";
-    case LinearSolverKind::automatic: return "automatic";
-  }
-  return "?";
+const NameTable<LinearSolverKind>& linear_solvers() {
+  static const NameTable<LinearSolverKind> table(
+      "linear solver", {{LinearSolverKind::ldlt, "ldlt"}, {LinearSolverKind::ldu, "ldu"}, {LinearSolverKind::cg, "cg"},
+                        {LinearSolverKind::lu, "lu"}, {LinearSolverKind::automatic, "automatic"}});
+  return table;
 }
 
-const char* newton_variant_name(NewtonVariant variant) {
-  switch (variant) {
-    case NewtonVariant::full: return "full";
-    case NewtonVariant::modified: return "modified";
-    case NewtonVariant::one: return "one";
-  }
-  return "?";
+const char* linear_solver_name(LinearSolverKind kind) { return linear_solvers().name(kind); }
+
+const NameTable<NewtonVariant>& newton_variants() {
+  static const NameTable<NewtonVariant> table(
+      "Newton variant", {{NewtonVariant::full, "full"}, {NewtonVariant::modified, "modified"}, {NewtonVariant::one, "one"}});
+  return table;
 }
+
+const char* newton_variant_name(NewtonVariant variant) { return newton_variants().name(variant); }
 
 NewtonSettings resolve(NewtonSettings settings, const Scene& scene) {
   if (settings.solver == LinearSolverKind::automatic)
@@ -41,14 +37,14 @@ NewtonSettings resolve(NewtonSettings settings, const Scene& scene) {
 void validate(const NewtonSettings& settings, const Scene& scene) {
   const NewtonSettings s = resolve(settings, scene);
   if (!(s.tolerance > 0) || !std::isfinite(s.tolerance))
-    throw InputError("--newton-tol: expected a number > 0");
-  if (s.max_iterations < 1) throw InputError("--newton-max-iter: expected a whole number >= 1");
+    throw InputError("Newton tolerance: expected a finite number > 0");
+  if (s.max_iterations < 1) throw InputError("Newton iteration limit: expected a whole number >= 1");
   if (s.solver == LinearSolverKind::cg && s.treatment != StiffnessTreatment::definite)
-    throw InputError("--linear-solver cg needs a symmetric positive definite matrix: use --jacobian definite "
-                     "with it, or --linear-solver ldlt, ldu or lu");
+    throw InputError("linear solver cg needs a symmetric positive definite matrix: use the definite Jacobian "
+                     "treatment with it, or linear solver ldlt, ldu or lu");
   if (s.solver == LinearSolverKind::ldlt && s.treatment == StiffnessTreatment::exact && scene.has_damping())
-    throw InputError("--linear-solver ldlt needs a symmetric matrix, and the exact Jacobian of a damped cloth is "
-                     "not: use --linear-solver ldu or lu, or --jacobian symmetric or definite");
+    throw InputError("linear solver ldlt needs a symmetric matrix, and the exact Jacobian of a damped cloth is "
+                     "not: use linear solver ldu or lu, or the symmetric or definite Jacobian treatment");
 }
 
 StageNewton::StageNewton(ForceField& field, NewtonSettings settings, StepCounters& counters)
@@ -187,11 +183,10 @@ double StageNewton::residual_at(const Vector& x_tilde, const Vector& v_tilde, do
 }
 
 void StageNewton::fail_linear(int iteration, double residual) {
-  char buf[200];
-  std::snprintf(buf, sizeof buf, "linear solve (%s) failed in Newton iteration %d, |r|_inf = %.3g%s%s",
-                linear_solver_name(settings_.solver), iteration, residual, linear_failure_.empty() ? "" : ": ",
-                linear_failure_.c_str());
-  failure_ = {linear_failure_kind_, buf};
+  failure_ = {linear_failure_kind_, std::string("linear solve (") + linear_solver_name(settings_.solver) +
+                                        ") failed in Newton iteration " + std::to_string(iteration) +
+                                        ", |r|_inf = " + format_number(residual, 3) +
+                                        (linear_failure_.empty() ? "" : ": " + linear_failure_)};
 }
 
 bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gamma, Vector& V, bool need_force) {
@@ -268,10 +263,9 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     if (modified && !fresh && update > slow_contraction * previous_update) stale = true;
   }
   // [newton_loop]
-  char buf[200];
-  std::snprintf(buf, sizeof buf, "Newton did not converge in %d iterations: |r|_inf = %.3g, |dv|_inf = %.3g",
-                settings_.max_iterations, residuals_.back(), update);
-  failure_ = {StepFailureKind::newton_not_converged, buf};
+  failure_ = {StepFailureKind::newton_not_converged,
+              "Newton did not converge in " + std::to_string(settings_.max_iterations) + " iterations: |r|_inf = " +
+                  format_number(residuals_.back(), 3) + ", |dv|_inf = " + format_number(update, 3)};
   counters_.newton_iterations += settings_.max_iterations;
   return false;
 }

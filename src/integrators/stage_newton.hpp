@@ -3,6 +3,7 @@
 // Runge-Kutta method and BDF2 are this one equation with different x~, v~ and gamma.
 #pragma once
 
+#include "base/name_table.hpp"
 #include "integrators/block_ldu.hpp"
 #include "integrators/pcg.hpp"
 #include "integrators/stepper.hpp"
@@ -22,6 +23,8 @@ enum class LinearSolverKind {
          ///< tested against
   automatic  ///< chosen for the matrix: ldu for the exact Jacobian of a damped cloth, ldlt otherwise
 };
+/// The solvers by name: ldlt, ldu, cg, lu, automatic.
+const NameTable<LinearSolverKind>& linear_solvers();
 const char* linear_solver_name(LinearSolverKind kind);
 
 /// Which Newton iteration solves the stage equation.
@@ -30,6 +33,8 @@ enum class NewtonVariant {
   modified,  ///< one factorization kept across iterations, stages and steps while it still converges fast
   one        ///< Baraff & Witkin's linearly implicit step: one iteration from the guess, accepted as it is
 };
+/// The variants by name: full, modified, one.
+const NameTable<NewtonVariant>& newton_variants();
 const char* newton_variant_name(NewtonVariant variant);
 
 /// Newton's stopping rule and its linear algebra.
@@ -56,8 +61,9 @@ struct NewtonSettings {
 /// cloth is not symmetric, so it gets ldu; every other treatment gives a symmetric matrix, which gets ldlt.
 NewtonSettings resolve(NewtonSettings settings, const Scene& scene);
 
-/// Throws InputError when the solver cannot take the matrix the treatment gives (CG needs the definite one,
-/// LDL^T a symmetric one).
+/// Throws InputError when a setting is out of range or the solver cannot take the matrix the treatment gives (CG
+/// needs the definite one, LDL^T a symmetric one). The message names the settings as the tables above name them;
+/// a program maps them to its flags.
 void validate(const NewtonSettings& settings, const Scene& scene);
 
 /// Solves the stage equation r(V) = M (V - v~) - gamma f(x~ + gamma V, V) = 0 by Newton's method on the Newton
