@@ -5,6 +5,7 @@
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/local_global.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/symplectic_euler.hpp"
 #include "model/fabric.hpp"
 
