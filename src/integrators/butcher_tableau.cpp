@@ -109,7 +109,7 @@ bool parse_entry(const std::string& token, double& value) {
 
 }  // namespace
 
-ButcherTableau parse_tableau(const std::string& text, const std::string& source_name) {
+ButcherTableau parse_tableau_entries(const std::string& text, const std::string& source_name) {
   const std::string source = escaped(source_name);
   ButcherTableau t;
   t.name = source;
@@ -181,17 +181,24 @@ ButcherTableau parse_tableau(const std::string& text, const std::string& source_
     for (int j = 0; j < s; ++j) t.A(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j + 1)];
   }
   t.b = Eigen::Map<const Eigen::VectorXd>(b.data(), s);
+  return t;
+}
+
+ButcherTableau parse_tableau(const std::string& text, const std::string& source_name) {
+  ButcherTableau t = parse_tableau_entries(text, source_name);
   try {
     validate(t);
   } catch (const InputError& e) {
-    throw InputError(source + ": " + e.what());
+    throw InputError(escaped(source_name) + ": " + e.what());
   }
   return t;
 }
 
-ButcherTableau read_tableau(const std::string& path) {
+std::string read_tableau_text(const std::string& path) {
   // A tableau is a few lines; 64 KiB leaves room for comments and stops a wrong path from being read for long.
-  return parse_tableau(read_text_file(path, 64 * 1024), path);
+  return read_text_file(path, 64 * 1024);
 }
+
+ButcherTableau read_tableau(const std::string& path) { return parse_tableau(read_tableau_text(path), path); }
 
 }  // namespace cloth

@@ -39,4 +39,11 @@ ButcherTableau read_tableau(const std::string& path);
 /// word: a program that makes a file name of it reduces it with safe_file_name (base/text.hpp) first.
 ButcherTableau parse_tableau(const std::string& text, const std::string& source);
 
+/// The same format read without validate(): the shapes are checked, the method is not. For engines that accept
+/// other tableaus than the explicit engine (Chapter 9's diagonally implicit ones), which validate them their way.
+ButcherTableau parse_tableau_entries(const std::string& text, const std::string& source);
+
+/// The whole text of a tableau file; throws InputError when it cannot be read.
+std::string read_tableau_text(const std::string& path);
+
 }  // namespace cloth
