@@ -5,7 +5,7 @@
 // partial one under a final name.
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/explicit_euler.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "model/force_field.hpp"
 #include "program/command_line.hpp"
@@ -134,7 +134,8 @@ TEST_CASE("simulate stops between two steps when its stop flag is raised, and ru
   p.grid = {5, 5, 0.1};
   const cloth::Scene scene(p);
   cloth::ForceField field(scene);
-  cloth::ExplicitEuler euler(field);
+  const auto stepper = cloth::make_stepper("explicit_euler", field);
+  cloth::Stepper& euler = *stepper;
   std::atomic<int> stop{0};
   cloth::RunSettings rs;
   rs.dt = 0.01;
@@ -400,7 +401,7 @@ TEST_CASE("SIGINT and SIGTERM during a run: the run stops at the next step, keep
     std::string method;
   };
   const std::vector<SignalCase> cases = {
-      {"ch02_explicit_euler", {"--method", "symplectic", "--t-end", "1000", "--dt", "1e-3"}, SIGINT, "symplectic_euler"},
+      {"ch02_explicit_euler", {"--method", "symplectic_euler", "--t-end", "1000", "--dt", "1e-3"}, SIGINT, "symplectic_euler"},
       {"ch03_runge_kutta", {"--t-end", "1000", "--dt", "1e-3"}, SIGTERM, "rk4"},
       {"ch04_implicit_euler", {"--t-end", "1000"}, SIGINT, "implicit_euler_ldlt"},
   };
@@ -426,7 +427,7 @@ TEST_CASE("a run longer than two seconds shows its progress on a terminal: steps
   const fs::path screen = ::ptsname(terminal);
   const ProgramFolder folder;
   const Child child = spawn_chapter("ch02_explicit_euler",
-                                    {"--method", "symplectic", "--t-end", "1000", "--dt", "1e-3", "--out", "out"},
+                                    {"--method", "symplectic_euler", "--t-end", "1000", "--dt", "1e-3", "--out", "out"},
                                     folder.cwd(), "", screen);
   ::fcntl(terminal, F_SETFL, O_NONBLOCK);
   std::string shown;
@@ -487,14 +488,14 @@ TEST_CASE("a second SIGTERM ends the program at once: no run.txt, and no partial
 TEST_CASE("SIGINT during --report-runs: the interrupted run says so, the program exits 130, nothing runs after") {
   const ProgramFolder folder;
   const ProgramRun run = signalled(folder, "ch02_explicit_euler", {"--report-runs", "--t-end", "1000", "--dt", "1e-3"},
-                                   "out/explicit_K50_D0/run.txt", 0.3, SIGINT);
+                                   "out/explicit_euler_K50_D0/run.txt", 0.3, SIGINT);
   CAPTURE(run.err);
   CHECK(run.status == 130);
   const fs::path out = folder.cwd() / "out";
   // The runs before the interrupted one finished (explicit Euler diverges at these settings: a result), the
   // interrupted one kept its outputs, and none after it ran.
   int interrupted = 0, after = 0;
-  for (const char* method : {"explicit", "symplectic"})
+  for (const char* method : {"explicit_euler", "symplectic_euler"})
     for (const char* c : {"K50_D0", "K200_D0", "K200_D20"}) {
       const fs::path dir = out / (std::string(method) + "_" + c);
       CAPTURE(dir);
