@@ -149,7 +149,10 @@ struct ProgramOutputs {
 std::vector<ProgramOutputs> every_output() {
   const std::vector<std::string> ch03_files = joined(run_files, {"lowest_point.dat"});
   return {
-      {"ch01_springs", {}, {"force_extension.dat", "stretch_energy.dat", "springs.dat", "gradient_check.txt"}},
+      {"ch01_springs",
+       {},
+       {"force_extension.dat", "stretch_energy.dat", "springs.dat", "gradient_check.txt", "spring_counts.md",
+        "gradient_check.md"}},
       {"ch02_explicit_euler", {}, run_files},
       {"ch02_explicit_euler", {"--single-spring"}, {"single_spring.dat"}},
       {"ch02_explicit_euler",
@@ -160,8 +163,12 @@ std::vector<ProgramOutputs> every_output() {
       {"ch04_implicit_euler", {}, run_files},
       {"ch04_implicit_euler",
        {"--report-runs"},
-       joined({"comparison.dat", "residuals.dat", "iterations_symmetric.dat", "iterations_definite.dat"},
-              in_folders(joined(prefixed("full_"), prefixed("one_")), run_files))},
+       joined(joined({"comparison.dat", "residuals.dat", "iterations_symmetric.dat", "iterations_definite.dat",
+                      "iterations_symmetric_K200_D20.dat", "iterations_exact_K200_D20.dat", "report_runs.md",
+                      "stiff_step.md", "jacobian_treatments.md", "definite_failure.txt", "stiff_large_step.md",
+                      "cg_run.md", "rk4_agreement.md", "rk4_halving_ratio.md"},
+                     in_folders(joined(prefixed("full_"), prefixed("one_")), run_files)),
+              in_folders({"definite_K50_D0", "stiff_K100000_h0.1", "cg_K50_D0"}, run_files))},
   };
 }
 
@@ -215,7 +222,7 @@ TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad i
       cases.push_back({p.program, p.args, "--out: 'out/" + sub + file_in_the_way, file_at("out/" + sub)});
     }
   }
-  CHECK(cases.size() == 98);
+  CHECK(cases.size() == 122);
   expect_refused(cases);
 }
 

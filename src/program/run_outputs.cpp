@@ -56,6 +56,8 @@ void write_outputs(const RunResult& result, const Stepper& stepper, const RunSet
       {"factorizations", std::to_string(result.counters.factorizations)},
       {"cg_iterations", std::to_string(result.counters.cg_iterations)},
   };
+  // The flexion springs' own stiffness only when one was given, so that every other run.txt stays as it was.
+  if (p.flexion_stiffness) kv.insert(kv.begin() + 5, {"K_flexion", num(*p.flexion_stiffness)});
   kv.insert(kv.end(), extra.begin(), extra.end());
   const int signal = stop_signal(settings);
   if (result.status == RunStatus::interrupted || (result.status == RunStatus::ok && signal != 0)) {
