@@ -285,6 +285,15 @@ TEST_CASE("hostile flags: given twice, too small to represent, beyond what the m
        "(*): expected fewer frames or a smaller grid"},
       {"ch02_explicit_euler", {"--grid", "3000000000x3000000000"},
        "--grid: '3000000000x3000000000' has more than 4000000 particles, the largest grid accepted"},
+      {"ch01_springs", {"--spacing", "1e200"},
+       "--spacing: 1e+200 makes the cloth 2.68701e+201 m wide, too large to square in a double; expected a cloth "
+       "narrower than 1e149 m"},
+      {"ch01_springs", {"--K", "1e300"},
+       "--K: 1e+300 N/m gives spring energies 1/2 K l^2 beyond what the model's doubles hold (1e300) at the lengths "
+       "the run may reach; expected a smaller K"},
+      {"ch03_runge_kutta", {"--grid", "300x300", "--frames", "100000", "--dt", "1e-6", "--t-end", "0.1"},
+       "--frames: a run recording 100001 frames of a 300x300 grid needs about 217 GB, more than the * a run may use "
+       "(*): expected fewer frames or a smaller grid"},
       {"ch01_springs", {"--grid", "300x300"},
        "--grid: the gradient check takes time growing as (M N)^2; expected at most 40000 particles (200x200)"},
       // --mass, the new common flag.

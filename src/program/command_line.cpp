@@ -288,9 +288,9 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
                        format_number(opt.run.dt) + ": expected t-end >= dt");
     if (opt.run.t_end / opt.run.dt > 1e9)
       throw InputError("--t-end / --dt: more than 1e9 steps asked for; expected at most 1e9");
-    require_representable(opt.scene, opt.run);
-    require_run_memory(opt.scene, opt.run, explicit_bytes_per_particle());
   }
+  require_representable(opt.scene, opt.run);
+  if (uses("--dt") || uses("--t-end")) require_run_memory(opt.scene, opt.run, explicit_bytes_per_particle());
   return opt;
 }
 

@@ -62,17 +62,23 @@ void prepare_outputs(const std::string& dir, const std::vector<std::string>& out
   for (const std::vector<std::string>* list : {&outputs, &others})
     for (const std::string& name : *list)
       if (!stays_inside(name)) throw std::logic_error("output name '" + escaped(name) + "' leaves its folder");
+  const auto in_dir = [&dir](const std::string& name) {
+    std::string path = dir;
+    path.append("/").append(name);
+    return path;
+  };
   // Everything in the way is found before anything is created.
   if (exists(dir) && !is_directory(dir))
     throw InputError(flag + ": " + quoted(dir) + " exists and is not a folder: expected a writable folder path");
   for (const std::string& name : outputs) {
     for (std::size_t slash = name.find('/'); slash != std::string::npos; slash = name.find('/', slash + 1)) {
-      const std::string folder = dir + "/" + name.substr(0, slash);
+      const std::string folder = in_dir(name.substr(0, slash));
       if (exists(folder) && !is_directory(folder))
         throw InputError(flag + ": " + quoted(folder) + " is a file where the run puts a folder of outputs: expected "
                          "an --out without it (remove it or choose another folder)");
     }
-    for (const std::string& file : {dir + "/" + name, dir + "/" + name + ".partial"})
+    const std::string file_path = in_dir(name);
+    for (const std::string& file : {file_path, file_path + ".partial"})
       if (is_directory(file))
         throw InputError(flag + ": " + quoted(file) + " is a folder where the run writes a file: expected an --out "
                          "without it (remove it or choose another folder)");
@@ -87,15 +93,14 @@ void prepare_outputs(const std::string& dir, const std::vector<std::string>& out
                      "): expected a writable folder path");
   for (const std::string& name : outputs)
     if (const auto slash = name.rfind('/'); slash != std::string::npos) {
-      fs::create_directories(dir + "/" + name.substr(0, slash), ec);
-      if (ec)
-        throw InputError(flag + ": cannot create folder " + quoted(dir + "/" + name.substr(0, slash)) + " (" +
-                         ec.message() + ")");
+      const std::string folder = in_dir(name.substr(0, slash));
+      fs::create_directories(folder, ec);
+      if (ec) throw InputError(flag + ": cannot create folder " + quoted(folder) + " (" + ec.message() + ")");
     }
   for (const std::string& name : others)
-    if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) remove_if_regular(dir + "/" + name);
+    if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) remove_if_regular(in_dir(name));
   for (const std::vector<std::string>* list : {&outputs, &others})
-    for (const std::string& name : *list) remove_if_regular(dir + "/" + name + ".partial");
+    for (const std::string& name : *list) remove_if_regular(in_dir(name + ".partial"));
 }
 
 void prepare_output_dir(const std::string& dir, const std::string& flag) { prepare_outputs(dir, {}, {}, flag); }
