@@ -5,7 +5,7 @@
 // partial one under a final name.
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/explicit_euler.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "model/force_field.hpp"
 #include "program/command_line.hpp"
@@ -134,7 +134,8 @@ TEST_CASE("simulate stops between two steps when its stop flag is raised, and ru
   p.grid = {5, 5, 0.1};
   const cloth::Scene scene(p);
   cloth::ForceField field(scene);
-  cloth::ExplicitEuler euler(field);
+  const auto stepper = cloth::make_stepper("explicit_euler", field);
+  cloth::Stepper& euler = *stepper;
   std::atomic<int> stop{0};
   cloth::RunSettings rs;
   rs.dt = 0.01;
