@@ -381,8 +381,8 @@ int main(int argc, char** argv) {
                   "Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the\n"
                   "analytic sparse Jacobian J = M - h df/dv - h^2 df/dx.");
   cli.add_value("--newton", newton_variants().accepted("|"),
-                "full Newton (default), modified (not implemented yet), or one: Baraff & Witkin's single linearised "
-                "step", [&](const std::string& s) { newton.variant = newton_variants().parse(s); });
+                "full Newton (default), modified (a factorization kept while it converges fast, Chapter 9), or one: "
+                "Baraff & Witkin's single linearised step", [&](const std::string& s) { newton.variant = newton_variants().parse(s); });
   cli.add_value("--linear-solver", linear_solvers().accepted("|"),
                 "block LDL^T, block LDU, block-Jacobi-preconditioned CG, Eigen's pivoting sparse LU, or automatic "
                 "(the default: ldu for the exact Jacobian of a damped cloth, ldlt otherwise)",
