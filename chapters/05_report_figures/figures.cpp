@@ -32,7 +32,7 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
   const double h = opt.run.dt, T = opt.run.t_end;
   const std::string dir = opt.run.out_dir + "/";
   const std::size_t cases = report_cases.size(), figure_runs = methods.size() * cases;
-  const auto stride = static_cast<std::size_t>(std::ceil(T / h * (1 - 1e-12))) / movie_frames;
+  const auto stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(T / h * (1 - 1e-12))) / movie_frames);
 
   OutputFile summary(dir + "summary.dat");
   std::fprintf(summary.get(),

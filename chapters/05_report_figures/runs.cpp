@@ -45,7 +45,8 @@ std::vector<Run> run_all(const Options& opt, const Settings& settings) {
     if (run.figure) {  // the model page's outputs, frames.dat thinned to movie_frames + 1 frames
       RunResult thin = run.result;
       thin.frames.clear();
-      const int stride = s.frames / movie_frames;
+      // At least 1: a run with fewer steps than movie frames keeps every frame (a stride of 0 would never end).
+      const int stride = std::max(1, s.frames / movie_frames);
       for (std::size_t k = 0; k < run.result.frames.size(); k += static_cast<std::size_t>(stride))
         thin.frames.push_back(run.result.frames[k]);
       s.out_dir = opt.run.out_dir + "/runs/" + run_name(run);
