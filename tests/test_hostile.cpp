@@ -3,6 +3,7 @@
 // machine's memory, a flag given twice) must be refused before anything runs: exit status 2, exactly one line on
 // stderr of a known shape, and the working folder left exactly as it was. The table below is the contract's
 // list of such inputs; each row is one program run.
+#include "integrators/implicit_tableaus.hpp"
 #include "process.hpp"
 #include "program_runner.hpp"
 
@@ -172,6 +173,49 @@ std::vector<ProgramOutputs> every_output() {
   };
 }
 
+// Chapters 5 to 10: the experiment programs and Chapter 9's single run, their outputs as their pages list them.
+std::vector<ProgramOutputs> later_outputs() {
+  std::vector<std::string> ch05 = {"summary.dat", "runs.dat", "instants.dat", "cases.dat", "figures.dat",
+                                   "parameters.dat", "theory.txt"};
+  for (const char* method : {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler"})
+    for (const std::string& c : report_cases) {
+      const std::string run = std::string(method) + "_" + c;
+      ch05.insert(ch05.end(), {"series_" + run + ".dat", "mesh_" + run + ".dat"});
+      for (const std::string& file : run_files) ch05.push_back("runs/" + run + "/" + file);
+    }
+  const std::vector<std::string> ch06 = {"benchmarks.dat", "speed_vs_error.dat", "near_zero.dat", "orders.dat",
+                                         "sensitivity.dat", "scaling.dat", "local_error_h2000us.dat",
+                                         "local_error_h1000us.dat", "local_error_h500us.dat", "local_error_h250us.dat",
+                                         "wp_K50_D0.dat", "wp_K200_D20.dat", "wp_K5000_D20.dat"};
+  std::vector<std::string> ch07 = {"regions.dat", "predicted_rest.dat", "predicted.dat", "measured.dat",
+                                   "implicit_euler.txt", "summary.txt"};
+  for (const std::string& c : report_cases)
+    ch07.insert(ch07.end(), {"spectrum_rest_" + c + ".dat", "spectrum_sagged_" + c + ".dat"});
+  std::vector<std::string> ch09_studies = {"energy_summary.dat", "orders.dat", "work_precision.dat"};
+  // Chapter 9's energy study runs every built-in implicit tableau of the library, and BDF2.
+  std::vector<std::string> ch09_methods = {"bdf2"};
+  for (const cloth::ImplicitTableau& t : cloth::builtin_implicit_tableaus()) ch09_methods.push_back(t.method.name);
+  for (const std::string& method : ch09_methods)
+    for (const std::string& file : run_files) ch09_studies.push_back("energy_" + method + "/" + file);
+  return {
+      {"ch05_report_figures", {}, joined(ch05, {"sweep.dat"})},
+      {"ch05_report_figures", {"--no-sweep"}, ch05},
+      {"ch06_speed_vs_error", {}, ch06},
+      {"ch06_speed_vs_error", {"--bench-only"}, {"benchmarks.dat"}},
+      {"ch06_odeint_peer", {}, {"odeint_comparison.md", "odeint_comparison.txt"}},
+      {"ch07_stability", {}, ch07},
+      {"ch09_implicit_runge_kutta", {}, run_files},
+      {"ch09_implicit_runge_kutta", {"--report-runs"}, ch09_studies},
+      {"ch10_real_cloth",
+       {"--quick"},
+       {"preset.md", "stable_step.md", "stable_step.dat", "practitioner_T0.5.md", "curves_practitioner_T0.5.dat",
+        "practitioner_summary.txt", "curves_K1000.dat", "curves_K10000.dat", "curves_K100000.dat",
+        "curves_K1e+06.dat", "refinement.md", "refinement.dat", "fabric_frames.dat", "step_cost.md", "step_cost.dat",
+        "map_1cm.md", "map_1mm.md", "map.dat", "map_winners.dat"}},
+      {"ch10_real_cloth", {}, {"practitioner_T1.md", "curves_practitioner_T1.dat"}},
+  };
+}
+
 Setup folder_at(const std::string& path) {
   return [path](const fs::path& cwd) { fs::create_directories(cwd / path); };
 }
@@ -208,20 +252,27 @@ TEST_CASE("matches: '*' spans any text, the rest matches exactly") {
 #if defined(CLOTH_HAVE_CH01_SPRINGS) && defined(CLOTH_HAVE_CH02_EXPLICIT_EULER) && \
     defined(CLOTH_HAVE_CH03_RUNGE_KUTTA) && defined(CLOTH_HAVE_CH04_IMPLICIT_EULER)
 
-TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad input: status 2, nothing written") {
+/// For every output of every program and mode: a folder in its place; a folder in place of the temporary name of
+/// the last one; and, where outputs go into subfolders, a file in place of the last one's subfolder.
+std::vector<Refused> in_the_way_cases(const std::vector<ProgramOutputs>& programs) {
   std::vector<Refused> cases;
-  for (const ProgramOutputs& p : every_output()) {
+  for (const ProgramOutputs& p : programs) {
     for (const std::string& name : p.outputs)
       cases.push_back({p.program, p.args, "--out: 'out/" + name + folder_in_the_way, folder_at("out/" + name)});
     // The temporary name an output is written under is in the way just the same.
     cases.push_back({p.program, p.args, "--out: 'out/" + p.outputs.back() + ".partial" + folder_in_the_way,
                      folder_at("out/" + p.outputs.back() + ".partial")});
     // A file where a report run's subfolder goes.
-    if (const auto slash = p.outputs.back().find('/'); slash != std::string::npos) {
+    if (const auto slash = p.outputs.back().rfind('/'); slash != std::string::npos) {
       const std::string sub = p.outputs.back().substr(0, slash);
       cases.push_back({p.program, p.args, "--out: 'out/" + sub + file_in_the_way, file_at("out/" + sub)});
     }
   }
+  return cases;
+}
+
+TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad input: status 2, nothing written") {
+  const std::vector<Refused> cases = in_the_way_cases(every_output());
   CHECK(cases.size() == 122);
   expect_refused(cases);
 }
@@ -359,6 +410,82 @@ TEST_CASE("hostile tableau files: not regular, not text, too large, keys twice, 
        "--tableau: '\\x1b]0;owned\\x07' is neither a built-in tableau (explicit_euler, heun, midpoint, kutta3, rk4, rule38) nor "
        "a readable file"},
   });
+}
+
+#endif
+
+#if defined(CLOTH_HAVE_CH05_REPORT_FIGURES) && defined(CLOTH_HAVE_CH06_SPEED_VS_ERROR) && \
+    defined(CLOTH_HAVE_CH06_ODEINT_PEER) && defined(CLOTH_HAVE_CH07_STABILITY) && \
+    defined(CLOTH_HAVE_CH09_IMPLICIT_RUNGE_KUTTA) && defined(CLOTH_HAVE_CH10_REAL_CLOTH)
+
+TEST_CASE("a folder in the way of any output of ch05-ch10, in any mode, is bad input: status 2, nothing written") {
+  const std::vector<Refused> cases = in_the_way_cases(later_outputs());
+  CHECK(cases.size() == 231 + 4 * cloth::builtin_implicit_tableaus().size());
+  expect_refused(cases);
+}
+
+TEST_CASE("hostile flags for ch05-ch10: flags a program does not use, bad values, runs beyond the machine's memory") {
+  const auto unknown = [](const std::string& program, const std::string& flag) {
+    return Refused{program, {flag, "1"}, "unknown flag '" + flag + "' (" + program + " --help lists the accepted flags)"};
+  };
+  // An experiment program takes only the common flags it uses: the ones it sets itself are refused, not ignored.
+  std::vector<Refused> cases;
+  for (const char* flag : {"--K", "--damping", "--frames"}) cases.push_back(unknown("ch05_report_figures", flag));
+  for (const char* flag : {"--dt", "--t-end", "--frames"}) cases.push_back(unknown("ch06_speed_vs_error", flag));
+  for (const char* flag : {"--pins", "--springs", "--K-flexion", "--frames"}) cases.push_back(unknown("ch06_odeint_peer", flag));
+  for (const char* flag : {"--K", "--damping", "--K-flexion", "--frames"}) cases.push_back(unknown("ch07_stability", flag));
+  for (const char* flag : {"--grid", "--K", "--dt", "--t-end"}) cases.push_back(unknown("ch10_real_cloth", flag));
+  const std::vector<Refused> values = {
+      {"ch05_report_figures", {"--threads", "0"}, "--threads: expected an integer from 1 to 64, got '0'"},
+      {"ch05_report_figures", {"--sweep-t-end-implicit", "5"}, "--sweep-t-end-implicit: must not exceed --t-end"},
+      {"ch05_report_figures", {"--no-sweep", "--no-sweep"}, "--no-sweep: given twice: " + given_twice},
+      {"ch05_report_figures", {"--v0", "1e200"},
+       "--v0: 1e+200 m/s carries the cloth 2e+200 m in --t-end, too far to square in a double; expected |v0| T below "
+       "1e149 m"},
+      {"ch06_speed_vs_error", {"--quick", "--quick"}, "--quick: given twice: " + given_twice},
+      {"ch06_speed_vs_error", {"--mass", "1e-310"}, "--mass: '1e-310" + too_small},
+      {"ch06_odeint_peer", {"--program", "fancy"}, "--program: expected 'plain'"},
+      {"ch06_odeint_peer", {"--runs", "0"}, "--runs: expected a whole number from 1 to 100"},
+      {"ch07_stability", {"--pins", "none"},
+       "--pins: none leaves the cloth falling forever, with no sagged equilibrium to linearise about: expected "
+       "corners, corner or edge"},
+      {"ch07_stability", {"--threads", "65"}, "--threads: expected a whole number from 1 to 64"},
+      {"ch07_stability", {"--budget", "-1"}, "--budget: expected a number >= 0"},
+      {"ch07_stability", {"--dt", "0.01", "--dt", "0.02"}, "--dt: given twice ('0.01', then '0.02'): " + given_twice},
+      {"ch09_implicit_runge_kutta", {"--tableau", "rk4"},
+       "--tableau: 'rk4' is neither a built-in implicit tableau (*) nor a readable file; bdf2 names the multistep "
+       "method"},
+      {"ch09_implicit_runge_kutta", {"--tol", "1e-3"},
+       "--tol: step control needs an embedded pair, and sdirk2 has no embedded weights: use --tableau trbdf2, or "
+       "leave --tol out for fixed steps"},
+      {"ch09_implicit_runge_kutta", {"--newton-max-iter", "0"},
+       "--newton-max-iter: expected a whole number from 1 to 1000, got 0"},
+      {"ch09_implicit_runge_kutta", {"--newton", "one", "--newton-max-iter", "3"},
+       "--newton-max-iter: --newton one takes exactly one iteration; leave --newton-max-iter out"},
+      {"ch09_implicit_runge_kutta", {"--K", "1e295"},
+       "--K: 1e+295 N/m gives spring energies 1/2 K l^2 beyond what the model's doubles hold (1e300) at the lengths "
+       "the run may reach; expected a smaller K"},
+      {"ch10_real_cloth", {"--quick", "--quick"}, "--quick: given twice: " + given_twice},
+      // Runs beyond any machine's memory, refused before anything runs, naming the flag.
+      {"ch05_report_figures", {"--grid", "1000x1000", "--t-end", "100", "--dt", "1e-4"},
+       "--t-end: keeping the cloth at every step of the figures' runs (1e+06 states of a 1000x1000 grid each) and "
+       "the sweep's energies needs about * TB, more than the * a run may use (*): expected a shorter --t-end, a "
+       "larger --dt or a smaller grid"},
+      {"ch05_report_figures", {"--no-sweep", "--grid", "300x300", "--t-end", "10", "--dt", "1e-4"},
+       "--t-end: keeping the cloth at every step of the figures' runs (1e+05 states of a 300x300 grid each) needs "
+       "about 2.6 TB, more than the * a run may use (*): expected a shorter --t-end, a larger --dt or a smaller grid"},
+      {"ch06_speed_vs_error", {"--grid", "2000x2000"},
+       "--grid: a run of the implicit methods on a 2000x2000 grid needs about 202 GB, more than the * a run may use "
+       "(*): expected a smaller grid"},
+      {"ch07_stability", {"--grid", "2000x2000", "--threads", "64"},
+       "--grid: * on a 2000x2000 grid needs about *, more than the * a run may use (*): expected a smaller grid*"},
+      {"ch09_implicit_runge_kutta", {"--grid", "2000x2000"},
+       "--grid: a run on a 2000x2000 grid needs about * GB, more than the * a run may use (*): expected a smaller "
+       "grid"},
+  };
+  cases.insert(cases.end(), values.begin(), values.end());
+  CHECK(cases.size() == 41);
+  expect_refused(cases);
 }
 
 #endif

@@ -6,6 +6,7 @@
 
 #include "base/input_error.hpp"
 #include "program/command_line.hpp"
+#include "program/output.hpp"
 
 using namespace cloth;
 
@@ -13,7 +14,10 @@ int main(int argc, char** argv) {
   CommandLine cli("ch05_report_figures",
                   "Chapter 5: the report's comparison. Runs explicit Euler, symplectic Euler, RK4 and implicit Euler\n"
                   "at (K, D) = (50, 0), (200, 0), (200, 20), and sweeps K in {10..1000} x D in {0, 1, 5, 20}.\n"
-                  "--K and --damping are ignored: the chapter sets them. Figure data go to --out.");
+                  "The chapter sets K, D and the frames itself; the other scene flags shape every run. Figure data go\n"
+                  "to --out.");
+  cli.use_common({"--grid", "--spacing", "--mass", "--K-flexion", "--damping-model", "--springs", "--pins", "--v0",
+                  "--dt", "--t-end", "--out"});
   ch05::Settings settings;
   cli.add_value("--threads", "n", "runs in parallel, 1..64 [2]", [&](const std::string& s) {
     const long long n = parse_integer(s);
@@ -31,7 +35,8 @@ int main(int argc, char** argv) {
     const Options opt = cli.parse(argc, argv);
     if (settings.sweep_t_end_implicit > opt.run.t_end) throw InputError("--sweep-t-end-implicit: must not exceed --t-end");
     if (settings.sweep_t_end_implicit == 0) settings.sweep_t_end_implicit = opt.run.t_end;
-    prepare_output_dir(opt.run.out_dir);
+    ch05::require_memory_of_runs(opt, settings);
+    prepare_outputs(opt.run.out_dir, ch05::output_names(settings.sweep), ch05::output_names(true));
 
     const std::vector<ch05::Run> runs = ch05::run_all(opt, settings);
     ch05::write_figure_data(runs, opt, settings);

@@ -1,7 +1,10 @@
 // The chapter's runs, spread over threads, and what a run's energy and sag say (see experiments.hpp).
 #include "experiments.hpp"
 
+#include "base/format_number.hpp"
 #include "integrators/method_registry.hpp"
+#include "program/interrupt.hpp"
+#include "program/limits.hpp"
 #include "program/parallel_runs.hpp"
 #include "program/run_outputs.hpp"
 
@@ -14,6 +17,48 @@
 namespace ch05 {
 
 using namespace cloth;
+
+std::vector<std::string> output_names(bool sweep) {
+  std::vector<std::string> names = {"summary.dat", "runs.dat",       "instants.dat", "cases.dat",
+                                    "figures.dat", "parameters.dat", "theory.txt"};
+  if (sweep) names.emplace_back("sweep.dat");
+  for (const std::string& m : methods)
+    for (const ReportCase& c : report_cases) {
+      const std::string name = run_name({m, c.K, c.D, 0, true, {}});
+      names.push_back("series_" + name + ".dat");
+      names.push_back("mesh_" + name + ".dat");
+      for (const std::string& file : run_output_names()) names.push_back("runs/" + name + "/" + file);
+    }
+  return names;
+}
+
+void require_memory_of_runs(const Options& opt, const Settings& settings) {
+  const double particles = static_cast<double>(opt.scene.grid.M) * opt.scene.grid.N;
+  const auto samples = [&](double t_end) {
+    RunSettings s = opt.run;
+    s.t_end = t_end;
+    return static_cast<double>(step_count(s)) + 1;
+  };
+  const double frame_bytes = 3 * particles * sizeof(double) + sizeof(Frame);
+  const double figure_runs = static_cast<double>(methods.size() * report_cases.size());
+  // The figures' runs keep the cloth at every step; each run's scene, field and stepper live while it runs.
+  double held = figure_runs * samples(opt.run.t_end) * (sizeof(EnergySample) + frame_bytes);
+  if (settings.sweep)
+    for (const std::string& m : methods)
+      held += static_cast<double>(sweep_K.size() * sweep_D.size()) *
+              (samples(m == "implicit_euler" ? settings.sweep_t_end_implicit : opt.run.t_end) * sizeof(EnergySample) +
+               2 * frame_bytes);
+  const double working = settings.threads * particles * implicit_bytes_per_particle(static_cast<long long>(particles));
+  const std::string grid = std::to_string(opt.scene.grid.M) + "x" + std::to_string(opt.scene.grid.N);
+  if (held >= working)
+    require_memory(held + working, "--t-end",
+                   "keeping the cloth at every step of the figures' runs (" + format_number(samples(opt.run.t_end), 3) +
+                       " states of a " + grid + " grid each)" + (settings.sweep ? " and the sweep's energies" : ""),
+                   ": expected a shorter --t-end, a larger --dt or a smaller grid");
+  else
+    require_memory(held + working, "--grid", std::to_string(settings.threads) + " runs at once on a " + grid + " grid",
+                   ": expected a smaller grid or fewer --threads");
+}
 
 std::vector<Run> run_all(const Options& opt, const Settings& settings) {
   const double h = opt.run.dt, T = opt.run.t_end;
@@ -34,6 +79,7 @@ std::vector<Run> run_all(const Options& opt, const Settings& settings) {
   });
   const auto steps_of = [&](double t_end) { return static_cast<int>(std::ceil(t_end / h * (1 - 1e-12))); };
   const double wall = run_in_parallel(order.size(), settings.threads, [&](std::size_t job) {
+    throw_if_interrupted();  // after Ctrl-C no run starts; the one it stopped kept its outputs
     Run& run = runs[order[job]];
     const Scene scene(with_K_and_D(opt.scene, run.K, run.D));
     ForceField field(scene);
@@ -49,10 +95,10 @@ std::vector<Run> run_all(const Options& opt, const Settings& settings) {
       const int stride = std::max(1, s.frames / movie_frames);
       for (std::size_t k = 0; k < run.result.frames.size(); k += static_cast<std::size_t>(stride))
         thin.frames.push_back(run.result.frames[k]);
-      s.out_dir = opt.run.out_dir + "/runs/" + run_name(run);
-      prepare_output_dir(s.out_dir);
+      s.out_dir = opt.run.out_dir + "/runs/" + run_name(run);  // made by prepare_outputs (output_names)
       write_outputs(thin, *stepper, s);
     }
+    throw_if_interrupted();
   });
   std::printf("%zu runs in %.1f s on %d threads\n", runs.size(), wall, settings.threads);
   return runs;

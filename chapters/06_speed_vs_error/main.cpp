@@ -6,40 +6,79 @@
 #include "studies.hpp"
 
 #include "program/command_line.hpp"
+#include "program/limits.hpp"
+#include "program/output.hpp"
 
 #include <cstdio>
+#include <string>
+#include <vector>
 
 using namespace cloth;
+
+namespace {
+
+// [configs]
+// The horizons: before the sensitivity of (200, 20) explodes (t ~ 0.6 s) and before the first spring of
+// (50, 0) passes near zero length, so that the reference is trustworthy (see the page).
+const std::vector<ch06::Config> configs = {
+    {"K50_D0", 50, 0, 0.25}, {"K200_D20", 200, 20, 0.25}, {"K5000_D20", 5000, 20, 0.25}};
+// [configs]
+const std::vector<double> local_error_steps = {2e-3, 1e-3, 5e-4, 2.5e-4};
+
+// The files the program writes into --out: the micro-benchmarks' alone, or every study's.
+std::vector<std::string> output_names(bool bench_only) {
+  std::vector<std::string> names = {"benchmarks.dat"};
+  if (bench_only) return names;
+  names.insert(names.end(), {"speed_vs_error.dat", "near_zero.dat", "orders.dat", "sensitivity.dat", "scaling.dat"});
+  for (const double h : local_error_steps) names.push_back(ch06::local_error_name(h));
+  for (const ch06::Config& c : configs) names.push_back("wp_" + c.name + ".dat");
+  return names;
+}
+
+void write_benchmarks(const std::string& dir, const SceneParams& scene, const std::vector<ch06::Benchmark>& bench) {
+  OutputFile file(dir + "/benchmarks.dat");
+  std::fprintf(file.get(), "# quantity wall_us cpu_us count count_unit  (grid %dx%d, K %g, D %g, folded states from t = 0.5 s)\n",
+               scene.grid.M, scene.grid.N, scene.stiffness, scene.damping);
+  for (const auto& b : bench) {
+    std::printf("  %-36s %10.2f us wall %10.2f us cpu  %g %s\n", b.name.c_str(), b.microseconds, b.cpu_microseconds,
+                b.count, b.count_name.c_str());
+    std::fprintf(file.get(), "%s %.4g %.4g %g %s\n", b.name.c_str(), b.microseconds, b.cpu_microseconds, b.count,
+                 b.count_name.empty() ? "-" : b.count_name.c_str());
+  }
+  file.commit();
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CommandLine cli("ch06_speed_vs_error",
                   "Chapter 6: speed against error. Benchmarks, reference, work-precision diagrams, scaling.\n"
-                  "--K and --damping are set per configuration; the other scene flags apply to all runs.");
+                  "The scene flags shape every cloth; --K and --damping set the one of the benchmarks and of the\n"
+                  "order studies, while the work-precision configurations set their own.");
+  cli.use_common({"--grid", "--spacing", "--mass", "--K", "--K-flexion", "--damping", "--damping-model", "--springs",
+                  "--pins", "--v0", "--out"});
   bool quick = false;
   bool bench_only = false;
   cli.add_switch("--quick", "a reduced sweep for the plots target (well under a minute)", [&] { quick = true; });
   cli.add_switch("--bench-only", "only the micro-benchmarks", [&] { bench_only = true; });
   return run_program(cli.program(), [&] {
-    Options opt = cli.parse(argc, argv);
-    prepare_output_dir(opt.run.out_dir);
+    const Options opt = cli.parse(argc, argv);
+    // The largest cloth held at once: the implicit rows' Newton matrices and factors on the --grid cloth.
+    const long long particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
+    require_memory(static_cast<double>(particles) * implicit_bytes_per_particle(particles), "--grid",
+                   "a run of the implicit methods on a " + std::to_string(opt.scene.grid.M) + "x" +
+                       std::to_string(opt.scene.grid.N) + " grid",
+                   ": expected a smaller grid");
+    std::vector<std::string> others = output_names(false);
+    prepare_outputs(opt.run.out_dir, output_names(bench_only), others);
     const std::string dir = opt.run.out_dir;
 
     const auto bench = ch06::run_benchmarks(opt.scene, quick ? 5 : 9);
-    {
-      std::FILE* out = std::fopen((dir + "/benchmarks.dat").c_str(), "w");
-      std::fprintf(out, "# quantity wall_us cpu_us count count_unit  (grid %dx%d, K %g, D %g, folded states from t = 0.5 s)\n",
-                   opt.scene.grid.M, opt.scene.grid.N, opt.scene.stiffness, opt.scene.damping);
-      for (const auto& b : bench) {
-        std::printf("  %-36s %10.2f us wall %10.2f us cpu  %g %s\n", b.name.c_str(), b.microseconds,
-                    b.cpu_microseconds, b.count, b.count_name.c_str());
-        std::fprintf(out, "%s %.4g %.4g %g %s\n", b.name.c_str(), b.microseconds, b.cpu_microseconds, b.count,
-                     b.count_name.empty() ? "-" : b.count_name.c_str());
-      }
-      std::fclose(out);
-    }
+    write_benchmarks(dir, opt.scene, bench);
     if (bench_only) return 0;
 
-    ch06::Sink sink{dir, std::fopen((dir + "/speed_vs_error.dat").c_str(), "w")};
+    OutputFile table(dir + "/speed_vs_error.dat");
+    const ch06::Sink sink{dir, table.get()};
     std::fprintf(sink.table,
                  "section config method h steps seconds err_max_T err_rms rhs_evaluations assemblies factorizations "
                  "cg_iterations newton_iterations status\n");
@@ -47,14 +86,8 @@ int main(int argc, char** argv) {
       std::fprintf(sink.table, "benchmark %dx%d %s - - %.6e - - - - - - - ok\n", opt.scene.grid.M, opt.scene.grid.N,
                    b.name.c_str(), 1e-6 * b.microseconds);
 
-    // [configs]
-    // The horizons: before the sensitivity of (200, 20) explodes (t ~ 0.6 s) and before the first spring of
-    // (50, 0) passes near zero length, so that the reference is trustworthy (see the page).
-    const std::vector<ch06::Config> configs = {
-        {"K50_D0", 50, 0, 0.25}, {"K200_D20", 200, 20, 0.25}, {"K5000_D20", 5000, 20, 0.25}};
-    // [configs]
     ch06::near_zero_springs(opt.scene, 1.0, quick ? 5e-4 : 5e-5, sink);
-    for (const double h : {2e-3, 1e-3, 5e-4, 2.5e-4}) ch06::local_error_along_trajectory(opt.scene, 1.0, h, sink);
+    for (const double h : local_error_steps) ch06::local_error_along_trajectory(opt.scene, 1.0, h, sink);
     ch06::observed_orders(opt.scene, {0.25, 1.0}, 6, quick ? 11 : 15, sink);
     ch06::sensitivity(opt.scene, configs, quick ? 5e-4 : 5e-5, sink);
 
@@ -66,7 +99,7 @@ int main(int argc, char** argv) {
     }
     ch06::scaling(opt.scene, quick ? std::vector<int>{20, 40} : std::vector<int>{20, 40, 80, 160, 320},
                   quick ? 3 : 5, quick ? 1.0 : 2.0, sink);
-    std::fclose(sink.table);
+    table.commit();
     return 0;
   });
 }

@@ -4,6 +4,7 @@
 #include "studies.hpp"
 
 #include "integrators/method_registry.hpp"
+#include "program/interrupt.hpp"
 
 #include <cmath>
 #include <string>
@@ -11,6 +12,8 @@
 namespace ch06 {
 
 using namespace cloth;
+
+std::string local_error_name(double h) { return "local_error_h" + std::to_string(std::lround(1e6 * h)) + "us.dat"; }
 
 // [local_error]
 // Along one RK4 run with step h, from every state: one step of h and two steps of h/2. Their difference times
@@ -27,14 +30,15 @@ void local_error_along_trajectory(const SceneParams& base, double T, double h, c
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   Vector x_full(x.size()), v_full(x.size()), x_half(x.size()), v_half(x.size());
   Vector all(3 * scene.particle_count());
-  const std::string name = "local_error_h" + std::to_string(std::lround(1e6 * h)) + "us.dat";
-  std::FILE* f = open(sink, name,
+  const auto file = open(sink, local_error_name(h),
                       "# t local_position_error_m local_velocity_error_m_per_s shortest_spring_l_over_L0  (rk4)");
+  std::FILE* const f = file->get();
   const double jump = 2 * scene.stiffness(SpringFamily::structural) * base.grid.d / base.mass;
   const auto steps = static_cast<long long>(std::llround(T / h));
   double worst = 0, t_worst = 0, worst_velocity = 0;
   long long jump_steps = 0;
   for (long long k = 0; k < steps; ++k) {
+    throw_if_interrupted();
     x_full = x, v_full = v;
     rk4->step(h, x_full, v_full);
     x_half = x, v_half = v;
@@ -50,7 +54,7 @@ void local_error_along_trajectory(const SceneParams& base, double T, double h, c
     if (local_velocity > 0.01 * jump * h) ++jump_steps;  // an error of the jump's size, not of a smooth step's
     x = x_half, v = v_half;  // continue on the more accurate branch
   }
-  std::fclose(f);
+  file->commit();
   std::printf("local error of rk4 (K %g, D %g, h %g): largest %.3e m at t = %.4f s (model J h^2/6 = %.3e), velocity "
               "%.3e m/s (model J h/4 = %.3e), J = %g m/s^2, models times 16/15 at worst; %lld of %lld steps with velocity error > 0.01 J h\n",
               base.stiffness, base.damping, h, worst, t_worst, jump * h * h / 6, worst_velocity, jump * h / 4, jump,
@@ -66,8 +70,9 @@ void local_error_along_trajectory(const SceneParams& base, double T, double h, c
 void observed_orders(const SceneParams& base, const std::vector<double>& horizons, int k_min, int k_max,
                      const Sink& sink) {
   const Scene scene(base);
-  std::FILE* f = open(sink, "orders.dat",
+  const auto file = open(sink, "orders.dat",
                       "# method T h difference_to_half_step observed_order  (blocks by method and T)");
+  std::FILE* const f = file->get();
   for (const char* method : {"explicit_euler", "symplectic_euler", "heun", "rk4"}) {
     for (const double T : horizons) {
       std::fprintf(f, "# %s T = %g\n", method, T);
@@ -96,7 +101,7 @@ void observed_orders(const SceneParams& base, const std::vector<double>& horizon
       std::fprintf(f, "\n\n");
     }
   }
-  std::fclose(f);
+  file->commit();
 }
 // [observed_orders]
 

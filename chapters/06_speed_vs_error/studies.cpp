@@ -7,6 +7,7 @@
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
 #include "model/report_cases.hpp"
+#include "program/interrupt.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -37,10 +38,10 @@ double max_particle_distance(const Vector& a, const Vector& b) {
   return worst;
 }
 
-std::FILE* open(const Sink& sink, const std::string& name, const char* header) {
-  std::FILE* f = std::fopen((sink.dir + "/" + name).c_str(), "w");
-  std::fprintf(f, "%s\n", header);
-  return f;
+std::unique_ptr<OutputFile> open(const Sink& sink, const std::string& name, const char* header) {
+  auto file = std::make_unique<OutputFile>(sink.dir + "/" + name);
+  std::fprintf(file->get(), "%s\n", header);
+  return file;
 }
 
 ShortestSpring shortest_spring(const Scene& scene, const Vector& x, Vector& all) {
@@ -89,6 +90,7 @@ Trajectory run_sampled(Stepper& stepper, double T, long long steps, int samples)
   const long long per_sample = steps / samples;
   const double radius = divergence_radius(scene, T);
   for (long long k = 0; k < steps; ++k) {
+    throw_if_interrupted();  // Ctrl-C ends the program between two steps (program/interrupt.hpp)
     if (!stepper.step(h, x, v)) {
       out.ok = false;
       out.message = "step failed at t = " + std::to_string((k + 1) * h);
@@ -116,11 +118,13 @@ void near_zero_springs(const SceneParams& base, double T, double h, const Sink& 
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   Vector all(3 * scene.particle_count());
   const auto steps = static_cast<long long>(std::llround(T / h));
-  std::FILE* f = open(sink, "near_zero.dat", "# t min_l_over_L0 family(0 structural,1 shear,2 flexion) i_p j_p i_q j_q");
+  const auto file = open(sink, "near_zero.dat", "# t min_l_over_L0 family(0 structural,1 shear,2 flexion) i_p j_p i_q j_q");
+  std::FILE* const f = file->get();
   double global_min = 1e300, t_min = 0;
   int spring_min = -1;
   const auto& springs = scene.springs();
   for (long long k = 0; k <= steps; ++k) {
+    throw_if_interrupted();
     if (k > 0) rk4->step(h, x, v);
     const auto [worst, which] = shortest_spring(scene, x, all);
     const Spring& sp = springs.springs[static_cast<std::size_t>(which)];
@@ -137,7 +141,7 @@ void near_zero_springs(const SceneParams& base, double T, double h, const Sink& 
                    k * h, worst);
     }
   }
-  std::fclose(f);
+  file->commit();
   const Spring& sp = springs.springs[static_cast<std::size_t>(spring_min)];
   const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q), N = scene.grid().N;
   std::printf("near-zero springs (K %g, D %g, rk4 h %g): smallest l/L0 = %.3e at t = %.4f s, spring (%d,%d)-(%d,%d)\n",
@@ -150,7 +154,8 @@ void near_zero_springs(const SceneParams& base, double T, double h, const Sink& 
 // the ratio of their largest particle distance to 1e-12 is how much the problem amplifies a perturbation, the
 // condition number of the solution at time t; no method can be checked more accurately than eps times it.
 void sensitivity(const SceneParams& base, const std::vector<Config>& configs, double h, const Sink& sink) {
-  std::FILE* f = open(sink, "sensitivity.dat", "# config K D t amplification  (blocks by config)");
+  const auto file = open(sink, "sensitivity.dat", "# config K D t amplification  (blocks by config)");
+  std::FILE* const f = file->get();
   const double delta = 1e-12;
   for (const Config& c : configs) {
     const Scene scene(with_K_and_D(base, c.K, c.D));
@@ -164,6 +169,7 @@ void sensitivity(const SceneParams& base, const std::vector<Config>& configs, do
     const long long every = std::max(1LL, steps / 200);
     std::fprintf(f, "# %s\n", c.name.c_str());
     for (long long k = 0; k <= steps; ++k) {
+      throw_if_interrupted();
       if (k > 0) a->step(h, xa, va), b->step(h, xb, vb);
       if (k % every == 0) {
         const double amp = max_particle_distance(xa, xb) / delta;
@@ -173,7 +179,7 @@ void sensitivity(const SceneParams& base, const std::vector<Config>& configs, do
     }
     std::fprintf(f, "\n\n");
   }
-  std::fclose(f);
+  file->commit();
 }
 // [sensitivity]
 
@@ -202,9 +208,10 @@ Trajectory reference(const SceneParams& base, const Config& c, int samples, int 
 void work_precision(const SceneParams& base, const Config& c, const Trajectory& ref, int samples, int k_min,
                     int k_max, double max_seconds, int runs, double ref_agreement, const Sink& sink) {
   const Scene scene(with_K_and_D(base, c.K, c.D));
-  std::FILE* f = open(sink, "wp_" + c.name + ".dat",
+  const auto file = open(sink, "wp_" + c.name + ".dat",
                       "# method h steps seconds err_max_T err_rms rhs assemblies factorizations cg_iterations "
                       "newton_iterations  (blocks by method)");
+  std::FILE* const f = file->get();
   for (const SweepMethod& row : sweep_methods()) {
     const std::string& method = row.label;
     std::fprintf(f, "# %s\n", method.c_str());
@@ -256,7 +263,7 @@ void work_precision(const SceneParams& base, const Config& c, const Trajectory& 
     }
     std::fprintf(f, "\n\n");
   }
-  std::fclose(f);
+  file->commit();
 }
 // [work_precision]
 
@@ -265,13 +272,15 @@ void work_precision(const SceneParams& base, const Config& c, const Trajectory& 
 // the explicit ones (the step changes the work per step only through Newton and CG iteration counts).
 void scaling(const SceneParams& base, const std::vector<int>& sizes, int runs, double max_step_seconds,
              const Sink& sink) {
-  std::FILE* f = open(sink, "scaling.dat",
+  const auto file = open(sink, "scaling.dat",
                       "# method grid springs seconds_per_step assembly factorization solve newton_per_step "
                       "cg_per_solve cpu_seconds_per_step  (blocks by method)");
+  std::FILE* const f = file->get();
   const std::vector<std::string> methods = {"explicit_euler", "rk4", "implicit_euler_direct", "implicit_euler_cg"};
   for (const std::string& method : methods) {
     std::fprintf(f, "# %s\n", method.c_str());
     for (int size : sizes) {
+      throw_if_interrupted();
       SceneParams p = base;
       p.grid.M = p.grid.N = size;
       const Scene scene(p);
@@ -319,7 +328,7 @@ void scaling(const SceneParams& base, const std::vector<int>& sizes, int runs, d
     }
     std::fprintf(f, "\n\n");
   }
-  std::fclose(f);
+  file->commit();
 }
 // [scaling]
 

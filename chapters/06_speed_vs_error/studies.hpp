@@ -4,6 +4,7 @@
 
 #include "integrators/method_registry.hpp"
 #include "model/scene.hpp"
+#include "program/output.hpp"
 
 #include <cstdio>
 #include <functional>
@@ -48,12 +49,16 @@ const SweepMethod& sweep_method(const std::string& label);
 /// Where the program writes: the one machine-readable table (speed_vs_error.dat) and the per-figure files.
 struct Sink {
   std::string dir;
-  std::FILE* table = nullptr;  ///< speed_vs_error.dat
+  std::FILE* table = nullptr;  ///< speed_vs_error.dat, an OutputFile the caller commits
 };
 
 double max_particle_distance(const cloth::Vector& a, const cloth::Vector& b);
-/// Opens DIR/name for writing and writes its header line.
-std::FILE* open(const Sink& sink, const std::string& name, const char* header);
+/// Opens DIR/name for writing (a checked cloth::OutputFile, committed by the study when it is complete) and
+/// writes its header line.
+std::unique_ptr<cloth::OutputFile> open(const Sink& sink, const std::string& name, const char* header);
+
+/// The file local_error_along_trajectory writes for step h: "local_error_h1000us.dat" for h = 1e-3 s.
+std::string local_error_name(double h);
 
 /// The spring with the smallest length relative to its rest length at positions x (`all` is scratch space for
 /// every particle's position, pinned ones included).

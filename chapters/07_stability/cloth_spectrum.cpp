@@ -1,10 +1,11 @@
 // Rest and sagged spectra of the cloth for Chapter 7.
 #include "cloth_spectrum.hpp"
 
-#include "parallel_for.hpp"
-
 #include "base/format_number.hpp"
+#include "model/report_cases.hpp"
+#include "program/interrupt.hpp"
 #include "program/output.hpp"
+#include "program/parallel_runs.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,15 +18,9 @@ using cloth::Scene;
 using cloth::SceneParams;
 using cloth::Vector;
 
-SceneParams with_stiffness(SceneParams scene, double K, double D) {
-  scene.stiffness = K;
-  scene.damping = D;
-  return scene;
-}
-
 RestSpectrum rest_spectrum(const SceneParams& scene) {
   // L is -M^{-1} df/dx of the flat sheet with K = 1, times m.
-  const SceneParams unit = with_stiffness(scene, 1.0, 0.0);
+  const SceneParams unit = cloth::with_K_and_D(scene, 1.0, 0.0);
   const Scene unit_scene(unit);
   ForceField field(unit_scene);
   RestSpectrum rest;
@@ -54,13 +49,8 @@ std::vector<Mode> rest_modes(const RestSpectrum& rest, double K, double D, doubl
 const cloth::Equilibrium& Equilibria::at(double K) {
   const auto found = by_stiffness_.find(K);
   if (found != by_stiffness_.end()) return found->second;
-  const Scene scene(with_stiffness(scene_, K, 0.0));
-  ForceField field(scene);
-  cloth::Equilibrium eq = cloth::static_equilibrium(field);
-  if (!eq.converged)
-    std::fprintf(stderr, "ch07_stability: the sagged equilibrium for K = %g did not converge (|f| = %.3g N)\n", K,
-                 eq.residual);
-  return by_stiffness_.emplace(K, std::move(eq)).first->second;
+  prepare({K}, 1);
+  return by_stiffness_.at(K);
 }
 
 std::vector<Complex> largest_eigenvalues(ForceField& field, const Vector& x, double D, int count) {
@@ -76,15 +66,19 @@ void Equilibria::prepare(const std::vector<double>& stiffnesses, int threads) {
   for (double K : stiffnesses)
     if (by_stiffness_.count(K) == 0 && std::find(missing.begin(), missing.end(), K) == missing.end()) missing.push_back(K);
   std::vector<cloth::Equilibrium> found(missing.size());
-  parallel_for(missing.size(), threads, [&](std::size_t k) {
-    const Scene scene(with_stiffness(scene_, missing[k], 0.0));
+  cloth::run_in_parallel(missing.size(), threads, [&](std::size_t k) {
+    cloth::throw_if_interrupted();
+    const Scene scene(cloth::with_K_and_D(scene_, missing[k], 0.0));
     ForceField field(scene);
     found[k] = cloth::static_equilibrium(field);
   });
   for (std::size_t k = 0; k < missing.size(); ++k) {
+    // Every sagged prediction linearises about the equilibrium: without it there is nothing to predict from.
     if (!found[k].converged)
-      std::fprintf(stderr, "ch07_stability: the sagged equilibrium for K = %g did not converge (|f| = %.3g N)\n",
-                   missing[k], found[k].residual);
+      throw NoEquilibrium("the sagged equilibrium for K = " + cloth::format_number(missing[k]) + " did not converge (|f| = " +
+                          cloth::format_number(found[k].residual, 3) + " N after " +
+                          std::to_string(found[k].iterations) + " iterations): the sagged spectra and h_max are "
+                          "predicted about it");
     by_stiffness_.emplace(missing[k], std::move(found[k]));
   }
 }
@@ -157,10 +151,12 @@ std::vector<std::pair<std::string, std::string>> report_spectra(const std::strin
     std::printf("rest state: largest eigenvalue of L %.4f (Lanczos); the grid is too large for a dense solve, so "
                 "the rest spectrum is drawn from %zu samples of [0, %.4f]\n", rest.mu_max, rest.mu.size(), rest.mu_max);
   std::vector<std::pair<std::string, std::string>> summary = {{"rest_L_max_eigenvalue", cloth::format_number(rest.mu_max)}};
-  const std::vector<std::pair<double, double>> report_cases = {{50, 0}, {200, 0}, {200, 20}};
-  equilibria.prepare({50, 200}, threads);
-  for (const auto& [K, D] : report_cases) {
-    const std::string tag = "K" + cloth::format_number(K) + "_D" + cloth::format_number(D);
+  std::vector<double> stiffnesses;
+  for (const cloth::ReportCase& c : cloth::report_cases) stiffnesses.push_back(c.K);
+  equilibria.prepare(stiffnesses, threads);
+  for (const cloth::ReportCase& c : cloth::report_cases) {
+    const double K = c.K, D = c.D;
+    const std::string tag = c.name();
     std::vector<Complex> at_rest;
     double rest_largest = 0;
     for (const Mode& mode : rest_modes(rest, K, D, scene.mass))
@@ -171,7 +167,7 @@ std::vector<std::pair<std::string, std::string>> report_spectra(const std::strin
     write_points(dir + "/spectrum_rest_" + tag + ".dat", "h lambda at the rest state, h = " + cloth::format_number(h),
                  at_rest, h);
 
-    const Scene s(with_stiffness(scene, K, D));
+    const Scene s(cloth::with_K_and_D(scene, K, D));
     ForceField field(s);
     const cloth::Equilibrium& eq = equilibria.at(K);
     const SaggedSpectrum sagged = sagged_spectrum(field, eq.x, D, dense_damped);

@@ -9,6 +9,7 @@
 #include "model/scene.hpp"
 
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,7 +31,15 @@ RestSpectrum rest_spectrum(const cloth::SceneParams& scene);
 /// The modes lambda^2 + (D mu / m) lambda + K mu / m = 0 of the rest state at stiffness K and damping D.
 std::vector<Mode> rest_modes(const RestSpectrum& rest, double K, double D, double m);
 
-/// The sagged equilibria of the scene, one per stiffness (damping does not move it), computed once each.
+/// A sagged equilibrium that could not be found: the chapter's predictions have nothing to linearise about, and
+/// the program ends with exit status 3 (the computation could not go on), keeping what it wrote before.
+class NoEquilibrium : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The sagged equilibria of the scene, one per stiffness (damping does not move it), computed once each. Throws
+/// NoEquilibrium when one does not converge.
 class Equilibria {
  public:
   explicit Equilibria(cloth::SceneParams scene) : scene_(std::move(scene)) {}
@@ -59,8 +68,5 @@ std::vector<Mode> modes_of(const std::vector<Complex>& lambda, bool pairs_only);
 std::vector<std::pair<std::string, std::string>> report_spectra(const std::string& dir, const cloth::SceneParams& scene,
                                                                 const RestSpectrum& rest, Equilibria& equilibria,
                                                                 double h, bool dense_damped, int threads);
-
-/// The scene with stiffness K and damping D.
-cloth::SceneParams with_stiffness(cloth::SceneParams scene, double K, double D);
 
 }  // namespace ch07

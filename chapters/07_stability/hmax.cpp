@@ -1,12 +1,13 @@
 // Predicted and measured h_max for Chapter 7.
 #include "hmax.hpp"
 
-#include "parallel_for.hpp"
-
 #include "base/format_number.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
+#include "model/report_cases.hpp"
+#include "program/interrupt.hpp"
 #include "program/output.hpp"
+#include "program/parallel_runs.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -63,7 +64,9 @@ std::string unbounded_reason(const SceneParams& params, const std::string& metho
   run.dt = h;
   run.t_end = T;
   run.frames = 1;
+  run.stop = &cloth::interrupt_flag();
   const cloth::RunResult result = cloth::simulate(*stepper, run, true);
+  cloth::throw_if_interrupted();  // a run stopped by Ctrl-C measured nothing
   if (result.status != cloth::RunStatus::ok) return result.message;
   const double excess0 = result.energy.front().energy.total() - E_eq;
   for (const cloth::EnergySample& s : result.energy)
@@ -173,10 +176,11 @@ std::vector<std::pair<std::string, std::string>> hmax_sweep(const std::string& d
   for (double D : sweep.dampings)
     for (double K : sweep.stiffnesses) cells.push_back({K, D, {}, {}});
   equilibria.prepare(sweep.stiffnesses, sweep.threads);
-  parallel_for(cells.size(), sweep.threads, [&](std::size_t c) {
+  cloth::run_in_parallel(cells.size(), sweep.threads, [&](std::size_t c) {
+    cloth::throw_if_interrupted();
     const double K = cells[c].K, D = cells[c].D;
     const cloth::Equilibrium& eq = equilibria.at(K);
-    const cloth::Scene s(with_stiffness(scene, K, D));
+    const cloth::Scene s(cloth::with_K_and_D(scene, K, D));
     cloth::ForceField field(s);
     const cloth::Vector zero = cloth::Vector::Zero(eq.x.size());
     const cloth::Energy e = field.energy(eq.x, zero);
@@ -221,11 +225,12 @@ std::vector<std::pair<std::string, std::string>> hmax_sweep(const std::string& d
   for (const Job& job : jobs)
     if (job.skipped) std::printf("  K = %-7g D = %-3g %-17s %s\n", job.K, job.D, job.method.c_str(), job.outcome.c_str());
   std::mutex print;
-  parallel_for(jobs.size(), sweep.threads, [&](std::size_t j) {
+  cloth::run_in_parallel(jobs.size(), sweep.threads, [&](std::size_t j) {
+    cloth::throw_if_interrupted();
     Job& job = jobs[j];
     const auto start = std::chrono::steady_clock::now();
     if (job.skipped) return;
-    const SceneParams params = with_stiffness(scene, job.K, job.D);
+    const SceneParams params = cloth::with_K_and_D(scene, job.K, job.D);
     if (job.method == "implicit_euler") probe_implicit(params, sweep, job);
     else measure(params, sweep, stages(stability_model(job.method)), job);
     const std::lock_guard<std::mutex> lock(print);

@@ -7,12 +7,57 @@
 #include "stability_regions.hpp"
 
 #include "base/input_error.hpp"
+#include "model/report_cases.hpp"
 #include "program/command_line.hpp"
+#include "program/limits.hpp"
 #include "program/output.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 using namespace ch07;
+
+namespace {
+
+// The files the program writes into --out.
+std::vector<std::string> output_names() {
+  std::vector<std::string> names = {"regions.dat", "predicted_rest.dat", "predicted.dat", "measured.dat",
+                                    "implicit_euler.txt", "summary.txt"};
+  for (const cloth::ReportCase& c : cloth::report_cases)
+    for (const char* state : {"rest", "sagged"}) names.push_back(std::string("spectrum_") + state + "_" + c.name() + ".dat");
+  return names;
+}
+
+// What the sweep needs before anything runs: a cloth that hangs (its sagged equilibrium is what the predictions
+// linearise about) and the memory of `threads` implicit runs on the grid at once.
+void check_scene(const cloth::SceneParams& scene, int threads) {
+  if (scene.pins == cloth::PinSet::none)
+    throw cloth::InputError("--pins: none leaves the cloth falling forever, with no sagged equilibrium to linearise "
+                            "about: expected corners, corner or edge");
+  const long long particles = static_cast<long long>(scene.grid.M) * scene.grid.N;
+  cloth::require_memory(threads * static_cast<double>(particles) * cloth::implicit_bytes_per_particle(particles),
+                        "--grid",
+                        std::to_string(threads) + " runs at once on a " + std::to_string(scene.grid.M) + "x" +
+                            std::to_string(scene.grid.N) + " grid",
+                        ": expected a smaller grid or fewer --threads");
+}
+
+SweepSettings sweep_settings(bool full, SweepSettings sweep, double T) {
+  sweep.T = T;
+  if (full) {
+    sweep.methods.insert(sweep.methods.end(), {"kutta3", "midpoint", "rule38"});
+    sweep.bisections = 7;
+    sweep.run_budget = 0;
+    sweep.dense_implicit = true;
+  }
+  const int per_decade = full ? 3 : 1;
+  for (int k = 0; k <= 4 * per_decade; ++k) sweep.stiffnesses.push_back(std::pow(10.0, 1.0 + double(k) / per_decade));
+  return sweep;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   cloth::CommandLine cli("ch07_stability",
@@ -23,42 +68,40 @@ int main(int argc, char** argv) {
   cli.use_common({"--grid", "--spacing", "--mass", "--damping-model", "--springs", "--pins", "--v0", "--dt", "--t-end",
                   "--out"});
   bool full = false;
-  SweepSettings sweep;
-  sweep.run_budget = 5e7;
+  SweepSettings settings;
+  settings.run_budget = 5e7;
   cli.add_switch("--full", "full-resolution sweep: 13 values of K, 7 bisections, every tableau, no budget, and the "
                            "dense spectrum of the damped sagged cloth on grids up to 20 x 20 (several minutes)",
                  [&] { full = true; });
   cli.add_value("--threads", "N", "worker threads for the sweep (default 2)", [&](const std::string& s) {
     const long long n = cloth::parse_integer(s);
     if (n < 1 || n > 64) throw cloth::InputError("expected a whole number from 1 to 64");
-    sweep.threads = static_cast<int>(n);
+    settings.threads = static_cast<int>(n);
   });
   cli.add_value("--budget", "N", "largest cost of one measuring run, in unknowns times right-hand sides (default "
                                  "5e7: every run on 20 x 20; 0: no limit)", [&](const std::string& s) {
-    sweep.run_budget = cloth::parse_number(s);
-    if (sweep.run_budget < 0) throw cloth::InputError("expected a number >= 0");
+    settings.run_budget = cloth::parse_number(s);
+    if (settings.run_budget < 0) throw cloth::InputError("expected a number >= 0");
   });
   return cloth::run_program(cli.program(), [&] {
     const cloth::Options opt = cli.parse(argc, argv);
-    cloth::prepare_output_dir(opt.run.out_dir);
+    check_scene(opt.scene, settings.threads);
+    cloth::prepare_outputs(opt.run.out_dir, output_names());
     const std::string& dir = opt.run.out_dir;
-    sweep.T = opt.run.t_end;
-    if (full) {
-      sweep.methods.insert(sweep.methods.end(), {"kutta3", "midpoint", "rule38"});
-      sweep.bisections = 7;
-      sweep.run_budget = 0;
-      sweep.dense_implicit = true;
+    const SweepSettings sweep = sweep_settings(full, settings, opt.run.t_end);
+    try {
+      auto summary = stability_regions(dir);                               // 1. the regions |R(z)| <= 1
+      const RestSpectrum rest = rest_spectrum(opt.scene);                  // 2. the cloth's spectrum over them
+      Equilibria equilibria(opt.scene);
+      for (const auto& entry : report_spectra(dir, opt.scene, rest, equilibria, opt.run.dt, full, sweep.threads))
+        summary.push_back(entry);
+      write_rest_predictions(dir, rest, sweep, opt.scene.mass);            // 3. h_max predicted and measured
+      for (const auto& entry : hmax_sweep(dir, opt.scene, rest, equilibria, sweep)) summary.push_back(entry);
+      cloth::write_key_values(dir + "/summary.txt", summary);
+    } catch (const NoEquilibrium& e) {
+      std::fprintf(stderr, "%s: %s\n", cli.program().c_str(), e.what());
+      return 3;
     }
-    const int per_decade = full ? 3 : 1;
-    for (int k = 0; k <= 4 * per_decade; ++k) sweep.stiffnesses.push_back(std::pow(10.0, 1.0 + double(k) / per_decade));
-
-    auto summary = stability_regions(dir);                                 // 1. the regions |R(z)| <= 1
-    const RestSpectrum rest = rest_spectrum(opt.scene);                    // 2. the cloth's spectrum over them
-    Equilibria equilibria(opt.scene);
-    for (const auto& entry : report_spectra(dir, opt.scene, rest, equilibria, opt.run.dt, full, sweep.threads)) summary.push_back(entry);
-    write_rest_predictions(dir, rest, sweep, opt.scene.mass);              // 3. h_max predicted and measured
-    for (const auto& entry : hmax_sweep(dir, opt.scene, rest, equilibria, sweep)) summary.push_back(entry);
-    cloth::write_key_values(dir + "/summary.txt", summary);
     return 0;
   });
 }

@@ -9,6 +9,7 @@
 #include "integrators/method_registry.hpp"
 #include "integrators/implicit_step_control.hpp"
 #include "integrators/simulate.hpp"
+#include "program/limits.hpp"
 #include "program/output.hpp"
 #include "program/run_outputs.hpp"
 
@@ -76,7 +77,7 @@ int run_cloth(const SceneParams& params, const RunSettings& run, const MethodCho
   validate(choice.newton, scene);  // before anything is written
   ForceField field(scene);
   const std::unique_ptr<Stepper> stepper = make_method(choice, field);
-  prepare_output_dir(run.out_dir);
+  prepare_outputs(run.out_dir, run_output_names());
   RunResult result;
   std::vector<std::pair<std::string, std::string>> extra;
   if (choice.tol) {
@@ -210,7 +211,11 @@ void work_precision(const SceneParams& p, double T, const std::vector<double>& h
 // precision on the stiff cloth (5000, 20). --quick keeps the plots target fast (fewer steps, one timing).
 void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, const std::string& program) {
   const std::string dir = opt.run.out_dir;
-  prepare_output_dir(dir);
+  // Every output of the studies, checked before the first run starts (a folder in the way is bad input).
+  std::vector<std::string> outputs = {"energy_summary.dat", "orders.dat", "work_precision.dat"};
+  for (const MethodChoice& m : study_methods(newton))
+    for (const std::string& name : run_output_names()) outputs.push_back("energy_" + m.argument + "/" + name);
+  prepare_outputs(dir, outputs);
   energy_study(opt, newton, dir, program);
 
   SceneParams report = opt.scene;
@@ -330,6 +335,9 @@ int main(int argc, char** argv) {
     } catch (const InputError& e) {
       throw InputError(std::string("--linear-solver / --jacobian: ") + e.what());
     }
+    // Newton's matrices and factors: the implicit methods' memory, beyond what parse checked for an explicit run.
+    const long long particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
+    require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles));
     if (want_report_runs) {
       report_runs(opt, choice.newton, quick, cli.program());
       return 0;

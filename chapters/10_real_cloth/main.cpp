@@ -10,6 +10,8 @@
 #include "integrators/symplectic_euler.hpp"
 #include "model/fabric.hpp"
 #include "program/command_line.hpp"
+#include "program/interrupt.hpp"
+#include "program/output.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -133,6 +135,7 @@ bool stays_bounded(const Scene& scene, const std::string& method, double h, int 
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   for (Eigen::Index k = 0; k < x.size(); ++k) x[k] += 1e-6 * std::sin(1.7 * static_cast<double>(k));  // seed all modes
   for (int k = 0; k < steps; ++k) {
+    throw_if_interrupted();
     stepper->step(h, x, v);
     if (!x.allFinite() || (x - scene.initial_positions()).cwiseAbs().maxCoeff() > 1.0) return false;
   }
@@ -453,6 +456,17 @@ void map(const Settings& s, const std::map<double, Curves>& curves, const std::v
   ch10::write_text(s.out, "map_winners.dat", winners);
 }
 
+// The files the program writes into --out (the full run adds the practitioner's T = 1 s study).
+std::vector<std::string> output_names(bool quick) {
+  std::vector<std::string> names = {
+      "preset.md",        "stable_step.md",   "stable_step.dat",   "practitioner_T0.5.md", "curves_practitioner_T0.5.dat",
+      "practitioner_summary.txt", "curves_K1000.dat", "curves_K10000.dat", "curves_K100000.dat", "curves_K1e+06.dat",
+      "refinement.md",    "refinement.dat",   "fabric_frames.dat", "step_cost.md",         "step_cost.dat",
+      "map_1cm.md",       "map_1mm.md",       "map.dat",           "map_winners.dat"};
+  if (!quick) names.insert(names.end(), {"practitioner_T1.md", "curves_practitioner_T1.dat"});
+  return names;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -465,7 +479,7 @@ int main(int argc, char** argv) {
   cli.add_switch("--quick", "a reduced sweep for the plots target (under a minute)", [&] { s.quick = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    prepare_output_dir(opt.run.out_dir);
+    prepare_outputs(opt.run.out_dir, output_names(s.quick), output_names(false));
     s.out = opt.run.out_dir;
     ch10::write_text(s.out, "preset.md", preset_table());
     // [methods]

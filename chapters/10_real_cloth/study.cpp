@@ -8,6 +8,7 @@
 #include "integrators/method_registry.hpp"
 #include "integrators/symplectic_euler.hpp"
 #include "model/fabric.hpp"
+#include "program/interrupt.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -79,6 +80,7 @@ Run run_once(const Scene& scene, const std::string& method, double T, long long 
   const double h = T / static_cast<double>(steps);
   const double t0 = cpu_seconds();
   for (long long k = 0; k < steps; ++k) {
+    throw_if_interrupted();  // Ctrl-C ends the program between two steps (program/interrupt.hpp)
     if (!stepper->step(h, r.x, v)) {
       r.ok = false;
       r.message = format("step %lld failed: %s", k + 1, stepper->failure().reason.c_str());
@@ -117,7 +119,10 @@ Vector reference(const Scene& scene, double T, long long steps, bool check, doub
   ExplicitRungeKutta rk4(field, tableau_from_argument("rk4"));
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   const double h = T / static_cast<double>(steps);
-  for (long long k = 0; k < steps; ++k) rk4.step(h, x, v);
+  for (long long k = 0; k < steps; ++k) {
+    throw_if_interrupted();
+    rk4.step(h, x, v);
+  }
   agreement = -1;
   if (check) {
     ExplicitRungeKutta rule38(field, tableau_from_argument("rule38"));
