@@ -562,3 +562,40 @@ TEST_CASE("memory limits: under ulimit -v a run that would not fit is refused na
 }
 
 #endif
+
+#if defined(CLOTH_HAVE_CH05_REPORT_FIGURES) && defined(CLOTH_HAVE_CH06_SPEED_VS_ERROR) && \
+    defined(CLOTH_HAVE_CH07_STABILITY) && defined(CLOTH_HAVE_CH09_IMPLICIT_RUNGE_KUTTA) && \
+    defined(CLOTH_HAVE_CH10_REAL_CLOTH)
+
+TEST_CASE("SIGINT and SIGTERM during ch05-ch10: each program stops between two steps, one line, no partial file") {
+  struct SignalCase {
+    std::string program;
+    std::vector<std::string> args;
+    std::string trigger;  ///< signalled once this exists (relative to the working folder), after `delay`
+    double delay;
+    int signal;
+  };
+  // Small grids and long horizons: each program is in the middle of its runs when the signal comes.
+  const std::vector<SignalCase> cases = {
+      {"ch05_report_figures", {"--grid", "6x6", "--t-end", "50", "--dt", "1e-3", "--no-sweep"}, "out", 0.3, SIGINT},
+      {"ch06_speed_vs_error", {"--grid", "6x6"}, "out/benchmarks.dat", 0, SIGTERM},
+      {"ch07_stability", {"--grid", "6x6", "--t-end", "100"}, "out/regions.dat", 0.2, SIGINT},
+      {"ch09_implicit_runge_kutta", {"--t-end", "1000"}, "out", 0.3, SIGTERM},
+      {"ch10_real_cloth", {"--quick"}, "out/preset.md", 0.2, SIGINT},
+  };
+  for (const SignalCase& c : cases) {
+    const ProgramFolder folder;
+    const ProgramRun run = signalled(folder, c.program, c.args, c.trigger, c.delay, c.signal);
+    const std::string name = c.signal == SIGINT ? "SIGINT" : "SIGTERM";
+    CAPTURE(c.program);
+    CAPTURE(run.err);
+    CHECK(run.status == 128 + c.signal);
+    CHECK(run.err.rfind(c.program + ": ", 0) == 0);
+    CHECK(contains(run.err, " interrupted by " + name));
+    CHECK(count_of(run.err, "\n") == 1);
+    CHECK(partial_files(folder.cwd() / "out").empty());
+    if (c.program == "ch09_implicit_runge_kutta") check_interrupted_outputs(folder.cwd() / "out", name, 400);
+  }
+}
+
+#endif
