@@ -8,6 +8,7 @@
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "model/single_spring.hpp"
+#include "oscillator.hpp"
 
 #include <doctest/doctest.h>
 
@@ -48,25 +49,9 @@ double difference_from_recorded(const Scene& scene, const Vector& x, const Vecto
   return worst;
 }
 
-// Error at t = 1 s on the damped single spring (K = 50, D = 2) against the closed form, positions and velocities
-// divided by omega; Newton's tolerance far below the truncation error.
-template <class MakeStepper>
-double oscillator_error(MakeStepper make, double h) {
-  const double K = 50, D = 2, m = 1, T = 1, s0 = -0.005;
-  const Scene scene(single_spring_params(K, D));
-  ForceField field(scene);
-  auto stepper = make(field);
-  Vector x, v;
-  single_spring_initial_state(scene, s0, x, v);
-  const Vector rest = scene.initial_positions();
-  const auto steps = std::llround(T / h);
-  for (long long n = 0; n < steps; ++n) REQUIRE(stepper->step(h, x, v));
-  const OscillatorState exact = single_spring_exact(K, D, m, s0, T);
-  double error = 0;
-  for (Eigen::Index i = 1; i < x.size(); i += 3)
-    error = std::max({error, std::abs(x[i] - rest[i] - exact.s), std::abs(v[i] - exact.ds) / std::sqrt(K / m)});
-  return error;
-}
+// The error at t = 1 s on the damped single spring against its closed form: cloth_test::oscillator_error
+// (oscillator.hpp), with Newton's tolerance far below the truncation error.
+using cloth_test::oscillator_error;
 
 NewtonSettings tight() {
   NewtonSettings s;

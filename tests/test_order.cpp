@@ -1,7 +1,8 @@
 // Observed orders of accuracy on a problem with a closed-form solution: the damped single spring of Chapter 2
 // (src/model/single_spring.hpp), m s'' + D s' + K s = 0, exactly linear inside the cloth model.
-#include "model/single_spring.hpp"
 #include "integrators/method_registry.hpp"
+#include "model/single_spring.hpp"
+#include "oscillator.hpp"
 
 #include <doctest/doctest.h>
 
@@ -11,26 +12,14 @@ using namespace cloth;
 
 namespace {
 
-constexpr double K = 50, D = 2, m = 1, T = 1, s0 = -0.005;
+constexpr double K = cloth_test::Oscillator::K, D = cloth_test::Oscillator::D, m = cloth_test::Oscillator::m,
+                 s0 = cloth_test::Oscillator::s0;
 
-// Largest deviation at t = T of a free particle's displacement, or velocity over omega, from the closed form.
+// The error at T of `method` with step h against the closed form (oscillator.hpp).
 double error_at_T(const std::string& method, double h) {
-  const Scene scene(single_spring_params(K, D));
-  ForceField field(scene);
   NewtonSettings newton;
   newton.tolerance = 1e-13;  // Newton's error must be far below the method's
-  auto stepper = make_stepper(method, field, {newton});
-  Vector x, v;
-  single_spring_initial_state(scene, s0, x, v);
-  const Vector rest = scene.initial_positions();
-  const auto steps = std::llround(T / h);
-  for (long long n = 0; n < steps; ++n) REQUIRE(stepper->step(h, x, v));
-  const OscillatorState exact = single_spring_exact(K, D, m, s0, T);
-  const double omega = std::sqrt(K / m);
-  double error = 0;
-  for (Eigen::Index i = 1; i < x.size(); i += 3)
-    error = std::max({error, std::abs(x[i] - rest[i] - exact.s), std::abs(v[i] - exact.ds) / omega});
-  return error;
+  return cloth_test::oscillator_error([&](ForceField& field) { return make_stepper(method, field, {newton}); }, h);
 }
 
 // Least-squares slope of log(error) against log(h) over h, h/2, h/4.

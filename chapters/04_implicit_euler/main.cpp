@@ -67,6 +67,15 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
   return {status, std::move(result), stepper.name()};
 }
 
+// `newton` as full Newton on `solver` with the Jacobian `treatment`: the settings of the chapter's measured runs,
+// each of which fixes what it compares, whatever the command line chose.
+NewtonSettings full_newton(NewtonSettings newton, LinearSolverKind solver, StiffnessTreatment treatment) {
+  newton.solver = solver;
+  newton.treatment = treatment;
+  newton.variant = NewtonVariant::full;
+  return newton;
+}
+
 // [stiff_step_residuals]
 // The residual |r|_inf after each Newton iteration of the first step of the report scene at K = 1e5 N/m,
 // h = 0.01 s (h omega_max ~ 10): exact Jacobian, sparse LU, tolerance tight enough to watch the sequence reach
@@ -198,14 +207,10 @@ void treatments_table(const Options& opt, const NewtonSettings& newton, const It
   };
   add("50, 0", "symmetric (= exact here)", sym);
   add("50, 0", "definite", def);
-  SceneParams damped = opt.scene;
-  damped.stiffness = 200;
-  damped.damping = 20;
-  NewtonSettings exact = newton, symmetric = newton;  // each with the solver its matrix calls for
-  exact.solver = symmetric.solver = LinearSolverKind::automatic;
-  exact.variant = symmetric.variant = NewtonVariant::full;
-  exact.treatment = StiffnessTreatment::exact;
-  symmetric.treatment = StiffnessTreatment::symmetric;
+  const SceneParams damped = with_K_and_D(opt.scene, 200, 20);
+  // Each with the solver its matrix calls for.
+  const NewtonSettings exact = full_newton(newton, LinearSolverKind::automatic, StiffnessTreatment::exact);
+  const NewtonSettings symmetric = full_newton(newton, LinearSolverKind::automatic, StiffnessTreatment::symmetric);
   add("200, 20", "symmetric",
       iterations_per_step(damped, opt.run, symmetric, dir + "/iterations_symmetric_K200_D20.dat"));
   add("200, 20", "exact", iterations_per_step(damped, opt.run, exact, dir + "/iterations_exact_K200_D20.dat"));
@@ -228,31 +233,21 @@ int definite_failure_transcript(const SceneParams& params, const RunSettings& ru
 // makes possible, and conjugate gradients on the report scene.
 int measured_sentences(const Options& opt, const NewtonSettings& newton, const std::string& dir,
                        const std::string& program) {
-  SceneParams stiff = opt.scene;
-  stiff.stiffness = 1e5;
-  stiff.damping = 0;
   RunSettings large_step = opt.run;
   large_step.dt = 0.1;
-  NewtonSettings exact = newton;
-  exact.solver = LinearSolverKind::automatic;
-  exact.treatment = StiffnessTreatment::exact;
-  exact.variant = NewtonVariant::full;
-  const Outcome a = run_cloth(stiff, large_step, exact, dir + "/" + measured_run_folders[1], program);
+  const Outcome a = run_cloth(with_K_and_D(opt.scene, 1e5, 0), large_step,
+                              full_newton(newton, LinearSolverKind::automatic, StiffnessTreatment::exact),
+                              dir + "/" + measured_run_folders[1], program);
   if (a.status >= 128) return a.status;
   write_text_fragment(dir + "/stiff_large_step.md",
                       "At h = " + format_number(large_step.dt) + " s it takes " + std::to_string(a.result.steps) +
                           " steps to t = " + format_number(a.result.t) + " s, with " +
                           format_number(a.result.newton_iterations_per_step(), 2) + " Newton iterations per step.");
-  SceneParams report_scene = opt.scene;
-  report_scene.stiffness = 50;
-  report_scene.damping = 0;
   RunSettings short_run = opt.run;
   short_run.t_end = 0.3;
-  NewtonSettings cg = newton;
-  cg.solver = LinearSolverKind::cg;
-  cg.treatment = StiffnessTreatment::definite;
-  cg.variant = NewtonVariant::full;
-  const Outcome b = run_cloth(report_scene, short_run, cg, dir + "/" + measured_run_folders[2], program);
+  const Outcome b = run_cloth(with_K_and_D(opt.scene, 50, 0), short_run,
+                              full_newton(newton, LinearSolverKind::cg, StiffnessTreatment::definite),
+                              dir + "/" + measured_run_folders[2], program);
   if (b.status >= 128) return b.status;
   const StepCounters& n = b.result.counters;
   const double cg_per_solve =
@@ -287,10 +282,7 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
   const RunResult rk4_half = run_with(rk4, steps[1]);
   MarkdownTable table({"K = 200, D = 20, to t = 1 s", "largest position difference from RK4 at h = 0.001 [m]",
                        "Newton iterations per step"}, "lrr");
-  NewtonSettings exact = newton;
-  exact.solver = LinearSolverKind::automatic;
-  exact.treatment = StiffnessTreatment::exact;
-  exact.variant = NewtonVariant::full;
+  const NewtonSettings exact = full_newton(newton, LinearSolverKind::automatic, StiffnessTreatment::exact);
   double distance[2];
   for (int k = 0; k < 2; ++k) {
     ImplicitEuler implicit(field, exact);
