@@ -68,6 +68,14 @@ std::vector<std::string> single_run_outputs() {
   return names;
 }
 
+// What --report-runs writes with `tableau`: order.dat and a folder of run outputs per report case.
+std::vector<std::string> report_run_outputs(const ButcherTableau& tableau) {
+  std::vector<std::string> names = {"order.dat"};
+  for (const ReportCase& c : report_cases)
+    for (const std::string& name : single_run_outputs()) names.push_back(report_folder(tableau, c) + "/" + name);
+  return names;
+}
+
 // The registry's explicit Runge-Kutta methods: "explicit_euler, heun, ...".
 std::string tableau_names() {
   std::string names;
@@ -136,11 +144,14 @@ int main(int argc, char** argv) {
     }
     const bool builtin = tableau.name == tableau_argument;
     const std::string source = builtin ? "builtin" : escaped(tableau_argument);
-    std::vector<std::string> report_outputs = {"order.dat"};
-    for (const ReportCase& c : report_cases)
-      for (const std::string& name : single_run_outputs()) report_outputs.push_back(report_folder(tableau, c) + "/" + name);
+    const std::vector<std::string> report_outputs = report_run_outputs(tableau);
+    // What an earlier run of another mode or another built-in tableau left: removed, so that --out never mixes
+    // two runs. A tableau file's folders are named after the file's `name`, which this run cannot know: they stay.
+    std::vector<std::string> stale = single_run_outputs();
+    for (const Method* m : methods_of(MethodFamily::explicit_runge_kutta))
+      for (const std::string& name : report_run_outputs(*m->tableau)) stale.push_back(name);
     if (!report_runs) {
-      prepare_outputs(opt.run.out_dir, single_run_outputs(), report_outputs);
+      prepare_outputs(opt.run.out_dir, single_run_outputs(), stale);
       return run_cloth(opt.scene, opt.run, tableau, source, opt.run.out_dir, cli.program());
     }
 
@@ -152,7 +163,7 @@ int main(int argc, char** argv) {
       const SceneParams p = with_case(opt.scene, c);
       require_representable(p, opt.run);
     }
-    prepare_outputs(opt.run.out_dir, report_outputs, single_run_outputs());
+    prepare_outputs(opt.run.out_dir, report_outputs, stale);
     for (const ReportCase& c : report_cases) {
       const SceneParams p = with_case(opt.scene, c);
       // A divergence is a result here; an interruption ends the program (the interrupted run said so).

@@ -101,6 +101,23 @@ void prepare_outputs(const std::string& dir, const std::vector<std::string>& out
     if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) remove_if_regular(in_dir(name));
   for (const std::vector<std::string>* list : {&outputs, &others})
     for (const std::string& name : *list) remove_if_regular(in_dir(name + ".partial"));
+  // The subfolders of the stale files, when that left them empty, deepest first; never one this run writes into.
+  // rmdir(2) removes only an empty folder, so a folder holding anything else (a reader's file) stays.
+  std::vector<std::string> folders;
+  for (const std::string& name : others)
+    for (std::size_t slash = name.rfind('/'); slash != std::string::npos && slash > 0;
+         slash = name.rfind('/', slash - 1)) {
+      const std::string folder = name.substr(0, slash);
+      const bool used = std::any_of(outputs.begin(), outputs.end(), [&](const std::string& output) {
+        return output.compare(0, folder.size() + 1, folder + "/") == 0;
+      });
+      if (!used) folders.push_back(folder);
+    }
+  std::sort(folders.begin(), folders.end(), [](const std::string& a, const std::string& b) {
+    return a.size() != b.size() ? a.size() > b.size() : a < b;
+  });
+  folders.erase(std::unique(folders.begin(), folders.end()), folders.end());
+  for (const std::string& folder : folders) ::rmdir(in_dir(folder).c_str());
 }
 
 void prepare_output_dir(const std::string& dir, const std::string& flag) { prepare_outputs(dir, {}, {}, flag); }

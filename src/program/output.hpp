@@ -33,7 +33,8 @@ class OutputError : public std::runtime_error {
 ///    subfolder goes, is bad input (InputError naming it, so exit status 2 with nothing written);
 ///  - `dir` and the subfolders are created, and `dir` must be writable (access(2): no probe file is made);
 ///  - the stale files of an earlier run are removed: each of `others` that is a regular file and not an output
-///    of this run, and leftover `.partial` files of both lists. Nothing else in `dir` is touched.
+///    of this run, and leftover `.partial` files of both lists; then the subfolders of `others` that this left
+///    empty and this run does not write into. Nothing else in `dir` is touched.
 /// Throws InputError (with `flag` first) when the folder cannot be created or written.
 void prepare_outputs(const std::string& dir, const std::vector<std::string>& outputs,
                      const std::vector<std::string>& others = {}, const std::string& flag = "--out");
