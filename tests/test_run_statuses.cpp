@@ -379,6 +379,18 @@ TEST_CASE("ch01_springs --help lists the common flags it takes and no run flag")
 
 namespace {
 
+/// Whether `signal` is pending for process `pid`, sent but not yet delivered (/proc/PID/status: SigPnd for the
+/// thread, ShdPnd for the process, each a hexadecimal mask with bit n - 1 for signal n).
+bool signal_pending(pid_t pid, int signal) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  bool pending = false;
+  while (std::getline(status, line))
+    if (line.rfind("SigPnd:", 0) == 0 || line.rfind("ShdPnd:", 0) == 0)
+      pending = pending || ((std::stoull(line.substr(7), nullptr, 16) >> (signal - 1)) & 1ULL) != 0;
+  return pending;
+}
+
 /// Starts `program args` (with --out out), waits until `trigger` (relative to its working folder) exists and then
 /// `delay` more seconds, and sends `signal`. Returns the status and the captured output.
 ProgramRun signalled(const ProgramFolder& folder, const std::string& program, std::vector<std::string> args,
@@ -494,7 +506,11 @@ TEST_CASE("a second SIGTERM ends the program at once: no run.txt, and no partial
   const fs::path out = folder.cwd() / "out";
   REQUIRE(wait_until_exists(child, out / "frames.dat.partial"));
   ::kill(child.pid, SIGTERM);
-  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  // The second only once the first was delivered (two pending SIGTERMs are one): not after a fixed delay, which a
+  // busy machine may stretch past the end of the writing.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (signal_pending(child.pid, SIGTERM) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
   ::kill(child.pid, SIGTERM);
   int raw = 0;
   REQUIRE(::waitpid(child.pid, &raw, 0) == child.pid);
