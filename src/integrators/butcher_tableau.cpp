@@ -2,6 +2,7 @@
 #include "integrators/butcher_tableau.hpp"
 
 #include "base/input_error.hpp"
+#include "integrators/order_conditions.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -56,30 +57,38 @@ const std::vector<ButcherTableau>& builtin_tableaus() {
   return tableaus;
 }
 
-double order_condition_defect(const ButcherTableau& t, int p) {
-  const Eigen::VectorXd& b = t.b;
-  const Eigen::VectorXd& c = t.c;
-  const Eigen::VectorXd Ac = t.A * c;
-  double defect = 0;
-  const auto check = [&](double lhs, double rhs) { defect = std::max(defect, std::abs(lhs - rhs)); };
-  // The conditions of order p are the rooted trees with p nodes (Butcher 2016, Table 312(I)).
-  switch (p) {
-    case 1: check(b.sum(), 1.0); break;
-    case 2: check(b.dot(c), 1.0 / 2); break;
-    case 3:
-      check(b.dot(c.cwiseProduct(c)), 1.0 / 3);
-      check(b.dot(Ac), 1.0 / 6);
-      break;
-    case 4:
-      check(b.dot(c.array().cube().matrix()), 1.0 / 4);
-      check(b.dot(c.cwiseProduct(Ac)), 1.0 / 8);
-      check(b.dot(t.A * c.cwiseProduct(c)), 1.0 / 12);
-      check(b.dot(t.A * Ac), 1.0 / 24);
-      break;
-    default: break;
-  }
-  return defect;
+bool ButcherTableau::first_same_as_last() const {
+  const int s = stages();
+  return s >= 2 && b[s - 1] == 0.0 && A.row(s - 1).transpose() == b;
 }
+
+double order_condition_defect(const ButcherTableau& t, int p, bool embedded) {
+  return order_condition_defect(t.A, embedded ? t.b_hat : t.b, p);
+}
+
+namespace {
+
+// The conditions of orders 1..order for one weight row, each stated as its sum when it fails.
+void check_order(const ButcherTableau& t, const std::string& who, const Eigen::VectorXd& w, int order,
+                 const std::string& row) {
+  if (order < 1 || order > max_tree_order)
+    throw InputError(who + "claims order " + std::to_string(order) + " for " + row + ": expected an order from 1 to " +
+                     std::to_string(max_tree_order) + " (the conditions this program generates)");
+  for (int p = 1; p <= order; ++p) {
+    int worst = -1;
+    const double defect = order_condition_defect(t.A, w, p, &worst);
+    if (defect > tolerance) {
+      const RootedTree& tree = rooted_trees()[static_cast<std::size_t>(worst)];
+      std::string condition = tree.condition;
+      if (row != "b") condition.replace(condition.find("b_i"), 3, "bhat_i");
+      throw InputError(who + "claims order " + std::to_string(order) + (row == "b" ? "" : " for " + row) +
+                       " but the order-" + std::to_string(p) + " condition " + condition + " (tree " + tree.bracket +
+                       ") fails by " + fmt(defect));
+    }
+  }
+}
+
+}  // namespace
 
 void validate(const ButcherTableau& t) {
   const std::string who = "tableau '" + t.name + "': ";
@@ -88,7 +97,11 @@ void validate(const ButcherTableau& t) {
   if (t.A.rows() != s || t.A.cols() != s || t.c.size() != s)
     throw InputError(who + "A must be " + std::to_string(s) + "x" + std::to_string(s) + " to match " +
                      std::to_string(s) + " weights b");
-  if (!t.A.allFinite() || !t.b.allFinite() || !t.c.allFinite()) throw InputError(who + "has a non-finite entry");
+  if (t.has_embedded() && t.b_hat.size() != s)
+    throw InputError(who + "bhat has " + std::to_string(t.b_hat.size()) + " weights: expected " + std::to_string(s) +
+                     ", one per stage as in b");
+  if (!t.A.allFinite() || !t.b.allFinite() || !t.c.allFinite() || !t.b_hat.allFinite())
+    throw InputError(who + "has a non-finite entry");
   for (int i = 0; i < s; ++i)
     for (int j = i; j < s; ++j)
       if (t.A(i, j) != 0.0)
@@ -101,21 +114,10 @@ void validate(const ButcherTableau& t) {
       throw InputError(who + "row " + std::to_string(i + 1) + ": c_" + std::to_string(i + 1) + " = " + fmt(t.c[i]) +
                        " but the row sum of A is " + fmt(row_sum) + " (consistency needs c_i = sum_j a_ij)");
   }
-  if (t.order < 1 || t.order > 4)
-    throw InputError(who + "claims order " + std::to_string(t.order) + ": expected an order from 1 to 4 (the "
-                     "conditions this program checks)");
-  // The order conditions, by order, as the error message states them.
-  static const char* const conditions[] = {
-      "",
-      "sum b_i = 1",
-      "sum b_i c_i = 1/2",
-      "sum b_i c_i^2 = 1/3 and sum b_i a_ij c_j = 1/6",
-      "sum b_i c_i^3 = 1/4, sum b_i c_i a_ij c_j = 1/8, sum b_i a_ij c_j^2 = 1/12, sum b_i a_ij a_jk c_k = 1/24"};
-  for (int p = 1; p <= t.order; ++p) {
-    const double defect = order_condition_defect(t, p);
-    if (defect > tolerance)
-      throw InputError(who + "claims order " + std::to_string(t.order) + " but the order-" + std::to_string(p) +
-                       " condition " + conditions[p] + " fails by " + fmt(defect));
+  check_order(t, who, t.b, t.order, "b");
+  if (t.has_embedded()) {
+    check_order(t, who, t.b_hat, t.embedded_order, "bhat");
+    if (t.b_hat == t.b) throw InputError(who + "bhat equals b: the pair would estimate every error as zero");
   }
 }
 
@@ -145,13 +147,19 @@ ButcherTableau parse_tableau(const std::string& text, const std::string& source)
   t.order = 0;
   std::vector<std::vector<double>> rows;
   std::vector<int> row_lines;
-  std::vector<double> b;
-  bool have_b = false;
+  std::vector<double> b, b_hat;
+  bool have_b = false, have_b_hat = false;
   std::istringstream in(text);
   std::string line;
   int line_no = 0;
   const auto fail = [&](const std::string& what) {
     throw InputError(source + ":" + std::to_string(line_no) + ": " + what);
+  };
+  const auto order_value = [&](std::istringstream& words, const std::string& key) {
+    std::string o;
+    if (!(words >> o) || o.size() != 1 || o[0] < '1' || o[0] > '0' + max_tree_order)
+      fail("'" + key + "' needs a whole number from 1 to " + std::to_string(max_tree_order));
+    return o[0] - '0';
   };
   while (std::getline(in, line)) {
     ++line_no;
@@ -162,14 +170,16 @@ ButcherTableau parse_tableau(const std::string& text, const std::string& source)
     if (first == "name") {
       if (!(words >> t.name)) fail("'name' needs a value");
     } else if (first == "order") {
-      std::string o;
-      if (!(words >> o) || o.size() != 1 || o[0] < '1' || o[0] > '4') fail("'order' needs a whole number from 1 to 4");
-      t.order = o[0] - '0';
+      t.order = order_value(words, "order");
+    } else if (first == "embedded_order") {
+      t.embedded_order = order_value(words, "embedded_order");
     } else {
-      if (have_b) fail("nothing may follow the 'b' row");
+      const bool weights = first == "b" || first == "bhat";
+      if ((have_b || have_b_hat) && !weights) fail("nothing but the weight rows 'b' and 'bhat' may follow the 'b' row");
+      if ((first == "b" && have_b) || (first == "bhat" && have_b_hat)) fail("a second '" + first + "' row");
       std::vector<double> values;
       std::string token;
-      std::istringstream entries(first == "b" ? line.substr(line.find('b') + 1) : line);
+      std::istringstream entries(weights ? line.substr(line.find(first) + first.size()) : line);
       while (entries >> token) {
         double value = 0;
         if (!parse_entry(token, value)) fail("'" + token + "' is not a number (write decimals or fractions p/q)");
@@ -178,6 +188,9 @@ ButcherTableau parse_tableau(const std::string& text, const std::string& source)
       if (first == "b") {
         b = values;
         have_b = true;
+      } else if (first == "bhat") {
+        b_hat = values;
+        have_b_hat = true;
       } else {
         rows.push_back(values);
         row_lines.push_back(line_no);
@@ -187,7 +200,11 @@ ButcherTableau parse_tableau(const std::string& text, const std::string& source)
   if (rows.empty() && !have_b)
     throw InputError(source + ": empty tableau: expected rows 'c_i a_i1 ... a_is' and a row 'b b_1 ... b_s'");
   if (!have_b) throw InputError(source + ": no 'b' row: expected a last row 'b b_1 ... b_s'");
-  if (t.order == 0) throw InputError(source + ": no 'order' line: expected 'order p' with p from 1 to 4");
+  if (t.order == 0)
+    throw InputError(source + ": no 'order' line: expected 'order p' with p from 1 to " + std::to_string(max_tree_order));
+  if (have_b_hat != (t.embedded_order != 0))
+    throw InputError(source + (have_b_hat ? ": a 'bhat' row needs an 'embedded_order q' line (the order of bhat)"
+                                          : ": an 'embedded_order' line needs a 'bhat' row"));
   const int s = static_cast<int>(b.size());
   if (s == 0) throw InputError(source + ": the 'b' row has no weight");
   if (static_cast<int>(rows.size()) != s)
@@ -205,6 +222,7 @@ ButcherTableau parse_tableau(const std::string& text, const std::string& source)
     for (int j = 0; j < s; ++j) t.A(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j + 1)];
   }
   t.b = Eigen::Map<const Eigen::VectorXd>(b.data(), s);
+  if (have_b_hat) t.b_hat = Eigen::Map<const Eigen::VectorXd>(b_hat.data(), static_cast<Eigen::Index>(b_hat.size()));
   try {
     validate(t);
   } catch (const InputError& e) {
