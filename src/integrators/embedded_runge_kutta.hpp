@@ -42,6 +42,12 @@ class EmbeddedRungeKutta final : public Stepper {
   /// is not already known.
   const Vector& first_stage(const Vector& x, const Vector& v);
 
+  /// a = a(x, v), counted as one evaluation (for the first-step heuristic's probe).
+  void evaluate(const Vector& x, const Vector& v, Vector& a) {
+    field_.acceleration(x, v, a);
+    ++counters_.rhs_evaluations;
+  }
+
   /// Forget the first stage: the state was changed by someone else than accept().
   void restart() { first_known_ = false; }
 

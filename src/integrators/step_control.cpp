@@ -33,7 +33,7 @@ double initial_step(EmbeddedRungeKutta& rk, const Vector& x, const Vector& v, co
   // One explicit Euler step of h0: y1 = y0 + h0 f0, f1 = (v1, a(x1, v1)).
   const Vector x1 = x + h0 * v, v1 = v + h0 * a0;
   Vector a1(x.size());
-  rk.field().acceleration(x1, v1, a1);
+  rk.evaluate(x1, v1, a1);
   const double d2 = norm(v1 - v, a1 - a0) / h0;
   const double k = rk.estimate_order();
   const double d = std::max(d1, d2);
