@@ -52,6 +52,7 @@ int run_once(const Options& opt, const ButcherTableau& tableau, const std::strin
                  {"first_same_as_last", tableau.first_same_as_last() ? "yes" : "no"},
                  {"rtol", num(settings.tolerances.rtol)},
                  {"atol", num(settings.tolerances.atol)},
+                 {"norm", norm_name(settings.tolerances.norm)},
                  {"controller", controller_name(settings.controller)},
                  {"first_step", settings.first_step > 0 ? num(settings.first_step) : "automatic"},
                  {"accepted_steps", std::to_string(result.accepted)},
@@ -85,13 +86,17 @@ int main(int argc, char** argv) {
                 [&](const std::string& s) { settings.first_step = positive(s); });
   cli.add_value("--controller", "elementary|pi", "step-size controller (default pi)",
                 [&](const std::string& s) { settings.controller = controller_from_name(s); });
+  std::optional<NormKind> norm;
+  cli.add_value("--norm", "rms|max", "error norm over the state's components (default rms)",
+                [&](const std::string& s) { norm = norm_from_name(s); });
   cli.add_switch("--experiments", "the chapter's studies instead of one run (folders of --out; exit 0)",
                  [&] { experiments = true; });
   cli.add_switch("--quick", "with --experiments: the reduced studies of the plots target", [&] { quick = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     if (tol && (rtol || atol)) throw InputError("--tol: sets rtol and atol both; give either --tol or --rtol/--atol");
-    settings.tolerances = {tol.value_or(rtol.value_or(1e-6)), tol.value_or(atol.value_or(1e-6))};
+    settings.tolerances = {tol.value_or(rtol.value_or(1e-6)), tol.value_or(atol.value_or(1e-6)),
+                           norm.value_or(NormKind::rms)};
     if (quick && !experiments) throw InputError("--quick: only with --experiments");
     if (experiments) {
       prepare_output_dir(opt.run.out_dir);

@@ -12,11 +12,16 @@ namespace cloth {
 double error_norm(const Vector& e_x, const Vector& e_v, const Vector& x0, const Vector& v0, const Vector& x1,
                   const Vector& v1, const Tolerances& tol) {
   // [error_norm]
-  const auto scaled_sum = [&](const Vector& e, const Vector& y0, const Vector& y1) {
-    return (e.array() / (tol.atol + tol.rtol * y0.array().abs().max(y1.array().abs()))).square().sum();
+  const auto scaled = [&](const Vector& e, const Vector& y0, const Vector& y1) {
+    return e.array() / (tol.atol + tol.rtol * y0.array().abs().max(y1.array().abs()));
   };
-  const double sum = scaled_sum(e_x, x0, x1) + scaled_sum(e_v, v0, v1);
-  const double err = std::sqrt(sum / static_cast<double>(e_x.size() + e_v.size()));
+  double err = 0;
+  if (tol.norm == NormKind::rms) {
+    const double sum = scaled(e_x, x0, x1).square().sum() + scaled(e_v, v0, v1).square().sum();
+    err = std::sqrt(sum / static_cast<double>(e_x.size() + e_v.size()));
+  } else {
+    err = std::max(scaled(e_x, x0, x1).abs().maxCoeff(), scaled(e_v, v0, v1).abs().maxCoeff());
+  }
   // [error_norm]
   return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
 }
@@ -41,6 +46,14 @@ double initial_step(EmbeddedRungeKutta& rk, const Vector& x, const Vector& v, co
   // [initial_step]
   return std::min(100 * h0, h1);
 }
+
+NormKind norm_from_name(const std::string& name) {
+  if (name == "rms") return NormKind::rms;
+  if (name == "max") return NormKind::max;
+  throw InputError("'" + name + "' is not an error norm: expected rms or max");
+}
+
+const char* norm_name(NormKind kind) { return kind == NormKind::max ? "max" : "rms"; }
 
 ControllerKind controller_from_name(const std::string& name) {
   if (name == "elementary") return ControllerKind::elementary;

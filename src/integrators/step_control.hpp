@@ -6,14 +6,25 @@
 
 namespace cloth {
 
+/// How the 2n scaled components of an error estimate become one number.
+enum class NormKind {
+  rms,  ///< root mean square (Hairer, Norsett & Wanner): an error in one spring is diluted by the whole cloth
+  max   ///< the largest component (as Boost.Odeint): an error in one spring counts in full
+};
+
 /// A component y_i of the state may err by atol + rtol |y_i| (Hairer, Norsett & Wanner 1993, II.4).
 struct Tolerances {
   double rtol = 1e-6;
   double atol = 1e-6;
+  NormKind norm = NormKind::rms;
 };
 
-/// The error of a step in units of tolerance, the root mean square over all 2n components of (x, v):
-///   err = sqrt( 1/(2n) sum_i (e_i / sc_i)^2 ),   sc_i = atol + rtol max(|y0_i|, |y1_i|)   (HNW (4.11)).
+/// Parses "rms" or "max"; throws InputError naming the accepted names.
+NormKind norm_from_name(const std::string& name);
+const char* norm_name(NormKind kind);
+
+/// The error of a step in units of tolerance, with sc_i = atol + rtol max(|y0_i|, |y1_i|) over all 2n components
+/// of (x, v):  err = sqrt( 1/(2n) sum_i (e_i / sc_i)^2 )  (HNW (4.11)), or err = max_i |e_i| / sc_i.
 /// A step is acceptable when err <= 1. A non-finite estimate gives +infinity (the step is rejected).
 double error_norm(const Vector& e_x, const Vector& e_v, const Vector& x0, const Vector& v0, const Vector& x1,
                   const Vector& v1, const Tolerances& tol);
