@@ -19,11 +19,17 @@ void hermite_positions(double theta, double h, const Vector& x0, const Vector& v
 
 AdaptiveResult adaptive_simulate(EmbeddedRungeKutta& rk, const RunSettings& run, const AdaptiveSettings& settings,
                                  bool record, const AttemptObserver& observer) {
+  const Scene& scene = rk.field().scene();
+  return adaptive_simulate(rk, scene.initial_positions(), scene.initial_velocities(), run, settings, record, observer);
+}
+
+AdaptiveResult adaptive_simulate(EmbeddedRungeKutta& rk, const Vector& x0, const Vector& v0, const RunSettings& run,
+                                 const AdaptiveSettings& settings, bool record, const AttemptObserver& observer) {
   ForceField& field = rk.field();
   const Scene& scene = field.scene();
   AdaptiveResult result;
-  result.x = scene.initial_positions();
-  result.v = scene.initial_velocities();
+  result.x = x0;
+  result.v = v0;
   Vector& x = result.x;
   Vector& v = result.v;
   const double T = run.t_end;

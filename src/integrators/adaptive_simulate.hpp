@@ -49,6 +49,11 @@ using AttemptObserver = std::function<void(const StepAttempt&, const Vector& x, 
 AdaptiveResult adaptive_simulate(EmbeddedRungeKutta& rk, const RunSettings& run, const AdaptiveSettings& settings,
                                  bool record = true, const AttemptObserver& observer = {});
 
+/// The same from the state (x0, v0) instead of the scene's initial state.
+AdaptiveResult adaptive_simulate(EmbeddedRungeKutta& rk, const Vector& x0, const Vector& v0, const RunSettings& run,
+                                 const AdaptiveSettings& settings, bool record = true,
+                                 const AttemptObserver& observer = {});
+
 /// The cubic Hermite interpolant of positions at t0 + theta h between (x0, v0) and (x1, v1), into `out`.
 void hermite_positions(double theta, double h, const Vector& x0, const Vector& v0, const Vector& x1, const Vector& v1,
                        Vector& out);
