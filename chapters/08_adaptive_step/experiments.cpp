@@ -153,7 +153,7 @@ void run_experiments(const Options& opt, bool quick) {
   hard_case(opt, 1e-6);
   pair_summary(opt, quick ? std::vector<double>{1e-4, 1e-6} : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8});
   jump_response(opt);
-  estimate_check(opt, 1e-4, quick ? 16 : 64);
+  estimate_check(opt, 1e-5, quick ? 32 : 64);
 }
 
 }  // namespace ch08
