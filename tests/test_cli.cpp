@@ -72,7 +72,7 @@ void expect_refused(const std::string& program, const std::vector<BadInput>& cas
   }
 }
 
-/// Bad values of the flags every simulating program shares (MODEL.md).
+/// Bad values of the flags every simulating program shares (docs/model.md).
 std::vector<BadInput> shared_flag_cases() {
   return {
       {{"--bogus"}, {"unknown flag '--bogus'", "--help"}},

@@ -186,7 +186,7 @@ TEST_CASE("the dampers never add energy: their power matches -D sum (w.u)^2 and 
       // The damping force alone; pinned particles do not move, so f.v over free particles is the whole power.
       const double power = (f - f0).dot(st.v);
 
-      // The same power spring by spring, from the laws of MODEL.md (w = v_p - v_q, u = (x_p - x_q)/l).
+      // The same power spring by spring, from the laws of docs/model.md (w = v_p - v_q, u = (x_p - x_q)/l).
       const Vector X = all_slot_positions(scene, st.x), V = all_slot_velocities(scene, st.v);
       double expected = 0;
       for (const Spring& s : scene.springs().springs) {

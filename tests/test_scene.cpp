@@ -1,4 +1,4 @@
-// Scenes against their definition in MODEL.md: which particles each pin set holds, that pinned particles are
+// Scenes against their definition in docs/model.md: which particles each pin set holds, that pinned particles are
 // not unknowns and never move during a run, and that a free cloth's centre of mass falls exactly as the
 // integrator says a single particle would (internal forces cancel).
 #include <doctest/doctest.h>
@@ -17,7 +17,7 @@ using namespace cloth;
 
 namespace {
 
-// MODEL.md's pin sets, written out independently of the library.
+// docs/model.md's pin sets, written out independently of the library.
 bool pinned_by_definition(PinSet pins, int M, int N, int i, int j) {
   switch (pins) {
     case PinSet::corners: return (i == 0 || i == M - 1) && (j == 0 || j == N - 1);

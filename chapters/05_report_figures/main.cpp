@@ -208,7 +208,7 @@ int main(int argc, char** argv) {
       s.t_end = run.t_end;
       s.frames = run.main ? steps_of(run.t_end) : 1;  // the figures' runs keep the cloth at every step (sag)
       run.result = simulate(*stepper, s);
-      if (run.main) {  // MODEL.md's outputs, frames.dat thinned to movie_frames + 1 frames
+      if (run.main) {  // docs/model.md's outputs, frames.dat thinned to movie_frames + 1 frames
         RunResult thin = run.result;
         thin.frames.clear();
         const int stride = s.frames / movie_frames;

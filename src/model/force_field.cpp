@@ -1,4 +1,4 @@
-// Spring, damping and gravity forces (MODEL.md), their energies, and their analytic Jacobians refilled in a
+// Spring, damping and gravity forces (docs/model.md), their energies, and their analytic Jacobians refilled in a
 // sparsity pattern built once. The spring loops are the hot loops of every chapter: they read springs
 // contiguously, branch on the damping law once per family (a template), and allocate nothing.
 #include "model/force_field.hpp"

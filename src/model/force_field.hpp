@@ -1,4 +1,4 @@
-// The forces of MODEL.md on the free particles (spring, damping, gravity), their energies, and their analytic
+// The forces of docs/model.md on the free particles (spring, damping, gravity), their energies, and their analytic
 // Jacobians df/dx and df/dv assembled into sparse matrices whose pattern is built once per scene.
 #pragma once
 
@@ -16,7 +16,7 @@ using ConstVectorRef = Eigen::Ref<const Eigen::VectorXd>;
 using VectorRef = Eigen::Ref<Eigen::VectorXd>;
 using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major (CSC), full storage of both triangles
 
-/// The three parts of the energy E = kinetic + gravity + spring (MODEL.md), in joules.
+/// The three parts of the energy E = kinetic + gravity + spring (docs/model.md), in joules.
 struct Energy {
   double kinetic = 0;
   double gravity = 0;

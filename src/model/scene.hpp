@@ -12,7 +12,7 @@
 
 namespace cloth {
 
-/// The damping law of a spring (MODEL.md).
+/// The damping law of a spring (docs/model.md).
 enum class DampingModel {
   projected,  ///< f_p = -D ((v_p - v_q) . u) u: damps only the stretching rate (the book's default)
   report      ///< f_p = -D (v_p - v_q) |x_p - x_q|: the report's law with its sign corrected

@@ -1,4 +1,4 @@
-// Strict parsing of the shared command-line flags of MODEL.md.
+// Strict parsing of the shared command-line flags of docs/model.md.
 #include "program/command_line.hpp"
 
 #include "base/format_number.hpp"
@@ -76,7 +76,7 @@ Grid parse_grid(const std::string& text, double spacing) {
   return Grid{static_cast<int>(M), static_cast<int>(N), spacing};
 }
 
-/// The shared flags of MODEL.md, in the order --help lists them: the usage text and the "missing value" message
+/// The shared flags of docs/model.md, in the order --help lists them: the usage text and the "missing value" message
 /// both come from this one table, so they cannot disagree.
 struct SharedFlag {
   const char* name;
@@ -147,7 +147,8 @@ std::string CommandLine::usage() const {
     if (head.size() < 37) head.resize(37, ' ');
     u << head << " " << text << (fallback.empty() ? "" : " (default " + fallback + ")") << "\n";
   };
-  u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (MODEL.md):\n";
+  u << "usage: " << program_ << " [flags]\n"
+    << summary_ << "\n\nScene and run flags (the book's model page, docs/model.md):\n";
   for (const SharedFlag& f : shared_flags)
     line(std::string(f.name) + " " + f.value_name, f.accepted,
          std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback));

@@ -1,4 +1,4 @@
-// The one command-line contract of MODEL.md, shared by every chapter program: the scene flags, the run flags,
+// The one command-line contract of docs/model.md, shared by every chapter program: the scene flags, the run flags,
 // chapter-specific flags on top, and strict validation (one clear line and exit status 2 on bad input).
 #pragma once
 

@@ -1,4 +1,4 @@
-// Writers for the output files of MODEL.md: final.dat, energy.dat, frames.dat and run.txt.
+// Writers for the output files of docs/model.md: final.dat, energy.dat, frames.dat and run.txt.
 #pragma once
 
 #include "integrators/simulate.hpp"

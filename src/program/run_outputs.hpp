@@ -15,7 +15,7 @@ void write_outputs(const RunResult& result, const Stepper& stepper, const RunSet
                    const std::vector<std::pair<std::string, std::string>>& extra = {});
 
 /// Prints a one-line summary, and for a failed run one line on stderr with the step and time; returns the exit
-/// status of MODEL.md (0 finished, 3 diverged or failed).
+/// status of docs/model.md (0 finished, 3 diverged or failed).
 int report(const RunResult& result, const Stepper& stepper, const std::string& program);
 
 }  // namespace cloth
