@@ -130,20 +130,35 @@ int main(int argc, char** argv) {
     RunSettings run = opt.run;
     run.t_end = T;
     // [project_runs]
+    // Besides every pair with each norm (PI controller): dopri5 with the elementary controller, and dopri5 refusing
+    // steps across which a spring turns by more than 0.5 rad.
+    const auto project_run = [&](const std::string& series, const ButcherTableau& tableau, double tol,
+                                 const AdaptiveSettings& settings) {
+      ForceField field(scene);
+      EmbeddedRungeKutta rk(field, tableau);
+      AdaptiveResult result;
+      const Timing t = best_of(runs, [&] { result = adaptive_simulate(rk, run, settings, false); });
+      if (result.status != RunStatus::ok) return;
+      rows.push_back({series, tableau.name, tol, position_error(result.x, ref), t.wall, t.cpu,
+                      result.counters.rhs_evaluations});
+    };
     for (const ButcherTableau& tableau : embedded_tableaus()) {
       if (tableau.name == "heun_euler") continue;  // order 2: far off the diagram at these errors
       for (const NormKind norm : {NormKind::rms, NormKind::max})
       for (const double tol : tolerances) {
-        ForceField field(scene);
-        EmbeddedRungeKutta rk(field, tableau);
         AdaptiveSettings settings;
         settings.tolerances = {tol, tol, norm};
-        AdaptiveResult result;
-        const Timing t = best_of(runs, [&] { result = adaptive_simulate(rk, run, settings, false); });
-        if (result.status != RunStatus::ok) continue;
-        rows.push_back({std::string("project_") + norm_name(norm), tableau.name, tol, position_error(result.x, ref), t.wall, t.cpu,
-                        result.counters.rhs_evaluations});
+        project_run(std::string("project_") + norm_name(norm), tableau, tol, settings);
       }
+    }
+    for (const double tol : tolerances) {
+      AdaptiveSettings settings;
+      settings.tolerances = {tol, tol};
+      settings.controller = ControllerKind::elementary;
+      project_run("project_rms_elementary", embedded_tableau_from_argument("dopri5"), tol, settings);
+      settings.controller = ControllerKind::pi;
+      settings.max_spring_turn = 0.5;
+      project_run("project_rms_turn", embedded_tableau_from_argument("dopri5"), tol, settings);
     }
     // [project_runs]
     // [odeint_runs]
@@ -220,7 +235,7 @@ int main(int argc, char** argv) {
           if (r.series.rfind(series, 0) == 0 && (method.empty() || r.method == method) && r.error <= level &&
               r.cpu < best) {
             best = r.cpu;
-            if (which) *which = r.series.substr(r.series.size() - 3) + "_" + r.method + "@" + format_number(r.tol, 2);
+            if (which) *which = r.series.substr(8) + ":" + r.method + "@" + format_number(r.tol, 2);
           }
         return best < 1e300 ? best : std::nan("");  // nan: no run of the series reached the level
       };

@@ -17,6 +17,22 @@ void hermite_positions(double theta, double h, const Vector& x0, const Vector& v
   out.noalias() = h00 * x0 + (h10 * h) * v0 + h01 * x1 + (h11 * h) * v1;
 }
 
+double largest_spring_turn(const Scene& scene, const Vector& x0, const Vector& x1, double min_rest_length) {
+  const Eigen::VectorXd& rest = scene.rest_positions();  // the pinned slots' positions, after the free ones
+  const int free = scene.free_count();
+  const auto position = [&](const Vector& x, int slot) -> Eigen::Vector3d {
+    return slot < free ? Eigen::Vector3d(x.segment<3>(3 * slot)) : Eigen::Vector3d(rest.segment<3>(3 * slot));
+  };
+  double largest_cos_turn = 1;  // the smallest cosine of a turn
+  for (const Spring& s : scene.springs().springs) {
+    if (s.rest_length < min_rest_length) continue;
+    const Eigen::Vector3d d0 = position(x0, s.p) - position(x0, s.q), d1 = position(x1, s.p) - position(x1, s.q);
+    const double n = d0.norm() * d1.norm();
+    if (n > 0) largest_cos_turn = std::min(largest_cos_turn, d0.dot(d1) / n);
+  }
+  return std::acos(std::clamp(largest_cos_turn, -1.0, 1.0));
+}
+
 AdaptiveResult adaptive_simulate(EmbeddedRungeKutta& rk, const RunSettings& run, const AdaptiveSettings& settings,
                                  bool record, const AttemptObserver& observer) {
   const Scene& scene = rk.field().scene();
@@ -76,11 +92,21 @@ AdaptiveResult adaptive_simulate(EmbeddedRungeKutta& rk, const Vector& x0, const
     rk.attempt(step, x, v);
     const double err =
         error_norm(rk.error_x(), rk.error_v(), x, v, rk.candidate_x(), rk.candidate_v(), settings.tolerances);
-    const bool accepted = err <= 1.0;
+    bool accepted = err <= 1.0;
+    double turn = 0;
+    if (accepted && settings.max_spring_turn > 0) {
+      // Springs whose whole-force jump J h / 4 = K L0 h / (2 m) could exceed atol (all of them on long steps).
+      const double min_rest = 2 * scene.params().mass * settings.tolerances.atol / (scene.params().stiffness * step);
+      turn = largest_spring_turn(scene, x, rk.candidate_x(), min_rest);
+      if (turn > settings.max_spring_turn) accepted = false, ++result.refused_for_turn;
+    }
     const StepAttempt attempt{t, step, err, accepted};
     if (record) result.attempts.push_back(attempt);
     if (observer) observer(attempt, x, v);
-    const double factor = controller.factor(err, accepted);
+    // A step refused for its turn shrinks in proportion (the turn is about proportional to h); the controller
+    // sees it as a rejection, so the step does not grow right after.
+    double factor = controller.factor(err, accepted);
+    if (err <= 1.0 && !accepted) factor = std::clamp(0.9 * settings.max_spring_turn / turn, 0.2, 0.9);
     if (!accepted) {  // the state is untouched: try again from it with a smaller step
       ++result.rejected;
       h = step * factor;

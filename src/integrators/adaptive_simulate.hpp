@@ -21,6 +21,11 @@ struct AdaptiveSettings {
   double max_factor = 10;  ///< and grows at most tenfold (HNW's DOPRI5)
   /// The floor on h: below max(min_step, 64 eps t) the run stops as failed (step_size_too_small).
   double min_step = 0;
+  /// When positive, a step the error estimate accepts is refused all the same if some spring's direction turns by
+  /// more than this angle [rad] across it (a spring passing near zero length turns by up to pi), unless the step
+  /// is already so short that even a jump of the spring's whole force inside it, J = 2 K L0 / m, would leave a
+  /// velocity error J h / 4 (Chapter 6) below atol. 0: no such check.
+  double max_spring_turn = 0;
 };
 
 /// One attempted step, for steps.dat and the figures.
@@ -35,6 +40,7 @@ struct StepAttempt {
 struct AdaptiveResult : RunResult {
   StepFailureKind failure = StepFailureKind::none;  ///< step_size_too_small when the floor stopped the run
   long long accepted = 0, rejected = 0;
+  long long refused_for_turn = 0;  ///< rejected steps the estimate accepted but a spring turned too far across
   double smallest_step = 0, largest_step = 0;  ///< over the accepted steps
   std::vector<StepAttempt> attempts;             ///< every attempt, when recording
 };
@@ -53,6 +59,10 @@ AdaptiveResult adaptive_simulate(EmbeddedRungeKutta& rk, const RunSettings& run,
 AdaptiveResult adaptive_simulate(EmbeddedRungeKutta& rk, const Vector& x0, const Vector& v0, const RunSettings& run,
                                  const AdaptiveSettings& settings, bool record = true,
                                  const AttemptObserver& observer = {});
+
+/// The largest angle [rad] by which the direction of a spring at least `min_rest_length` long at rest turns
+/// between the free positions x0 and x1.
+double largest_spring_turn(const Scene& scene, const Vector& x0, const Vector& x1, double min_rest_length = 0);
 
 /// The cubic Hermite interpolant of positions at t0 + theta h between (x0, v0) and (x1, v1), into `out`.
 void hermite_positions(double theta, double h, const Vector& x0, const Vector& v0, const Vector& x1, const Vector& v1,
