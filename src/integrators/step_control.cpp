@@ -64,14 +64,24 @@ ControllerKind controller_from_name(const std::string& name) {
 const char* controller_name(ControllerKind kind) { return kind == ControllerKind::pi ? "pi" : "elementary"; }
 
 StepController::StepController(ControllerKind kind, int k, double safety, double min_factor, double max_factor)
-    : kind_(kind), k_(k), safety_(safety), min_factor_(min_factor), max_factor_(max_factor) {}
+    : kind_(kind),
+      k_(k),
+      safety_(safety),
+      min_factor_(min_factor),
+      max_factor_(max_factor),
+      previous_error_(std::pow(safety, k)) {}
 
 double StepController::factor(double err, bool accepted) {
   // [controller]
+  // Both controllers aim at the same error per step, rho = safety^k (0.9^5 = 0.59 for dopri5): the elementary one
+  // as HNW write it, h * safety * err^(-1/k) = h (rho / err)^(1/k); the PI one as Gustafsson (1991) writes it,
+  //   h (rho / err_n)^(k_I) (err_{n-1} / err_n)^(k_P),   k_I = 0.3 / k, k_P = 0.4 / k,
+  // whose proportional term answers how the error is changing, not only where it is.
   err = std::max(err, 1e-10);  // an estimate of zero would ask for an infinite step
-  double f = safety_ * std::pow(err, -1.0 / k_);
+  const double rho = std::pow(safety_, k_);
+  double f = std::pow(rho / err, 1.0 / k_);
   if (accepted && kind_ == ControllerKind::pi && !after_rejection_)
-    f = safety_ * std::pow(err, -0.7 / k_) * std::pow(previous_error_, 0.4 / k_);
+    f = std::pow(rho / err, 0.3 / k_) * std::pow(previous_error_ / err, 0.4 / k_);
   f = std::clamp(f, min_factor_, after_rejection_ || !accepted ? 1.0 : max_factor_);
   // [controller]
   if (accepted) previous_error_ = err;

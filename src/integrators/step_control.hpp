@@ -38,8 +38,8 @@ double error_norm(const Vector& e_x, const Vector& e_v, const Vector& x0, const 
 double initial_step(EmbeddedRungeKutta& rk, const Vector& x, const Vector& v, const Tolerances& tol);
 
 enum class ControllerKind {
-  elementary,  ///< h_new = h * safety * err^(-1/k)
-  pi           ///< h_new = h * safety * err^(-0.7/k) * err_prev^(0.4/k)  (Gustafsson 1991; Soderlind 2002)
+  elementary,  ///< h_new = h * safety * err^(-1/k) = h (rho/err)^(1/k)
+  pi           ///< h_new = h (rho/err)^(0.3/k) (err_prev/err)^(0.4/k), rho = safety^k  (Gustafsson 1991; Soderlind 2002)
 };
 
 /// Parses "elementary" or "pi"; throws InputError naming the accepted names.
@@ -62,7 +62,7 @@ class StepController {
  private:
   ControllerKind kind_;
   double k_, safety_, min_factor_, max_factor_;
-  double previous_error_ = 1.0;  // err of the last accepted step (1 before the first)
+  double previous_error_;  // err of the last accepted step (rho before the first)
   bool after_rejection_ = false;
 };
 
