@@ -43,8 +43,7 @@ int run_once(const Options& opt, const ButcherTableau& tableau, const std::strin
   prepare_output_dir(opt.run.out_dir);
   const AdaptiveResult result = adaptive_simulate(rk, opt.run, settings);
   const auto num = [](double x) { return format_number(x, 10); };
-  write_outputs(result, rk, opt.run,
-                {{"tableau", tableau.name},
+  std::vector<std::pair<std::string, std::string>> extra = {{"tableau", tableau.name},
                  {"tableau_source", source},
                  {"stages", std::to_string(tableau.stages())},
                  {"order", std::to_string(tableau.order)},
@@ -54,12 +53,15 @@ int run_once(const Options& opt, const ButcherTableau& tableau, const std::strin
                  {"atol", num(settings.tolerances.atol)},
                  {"norm", norm_name(settings.tolerances.norm)},
                  {"controller", controller_name(settings.controller)},
+                 {"max_spring_turn", settings.max_spring_turn > 0 ? num(settings.max_spring_turn) : "none"},
                  {"first_step", settings.first_step > 0 ? num(settings.first_step) : "automatic"},
                  {"accepted_steps", std::to_string(result.accepted)},
                  {"rejected_steps", std::to_string(result.rejected)},
                  {"smallest_step", num(result.smallest_step)},
                  {"largest_step", num(result.largest_step)},
-                 {"failure_kind", step_failure_name(result.failure)}});
+                 {"refused_for_turn", std::to_string(result.refused_for_turn)}};
+  if (result.failure != StepFailureKind::none) extra.emplace_back("failure", step_failure_name(result.failure));
+  write_outputs(result, rk, opt.run, extra);
   write_steps(opt.run.out_dir + "/steps.dat", result.attempts);
   return report(result, rk, program);
 }
@@ -86,6 +88,9 @@ int main(int argc, char** argv) {
                 [&](const std::string& s) { settings.first_step = positive(s); });
   cli.add_value("--controller", "elementary|pi", "step-size controller (default pi)",
                 [&](const std::string& s) { settings.controller = controller_from_name(s); });
+  cli.add_value("--max-spring-turn", "RAD",
+                "also refuse steps across which a spring turns by more than RAD (default: no such check)",
+                [&](const std::string& s) { settings.max_spring_turn = positive(s); });
   std::optional<NormKind> norm;
   cli.add_value("--norm", "rms|max", "error norm over the state's components (default rms)",
                 [&](const std::string& s) { norm = norm_from_name(s); });

@@ -44,7 +44,8 @@ double initial_step(EmbeddedRungeKutta& rk, const Vector& x, const Vector& v, co
   const double d = std::max(d1, d2);
   const double h1 = d <= 1e-15 ? std::max(1e-6, 1e-3 * h0) : std::pow(0.01 / d, 1.0 / k);
   // [initial_step]
-  return std::min(100 * h0, h1);
+  const double h = std::min(100 * h0, h1);
+  return std::isfinite(h) && h > 0 ? h : 1e-6;  // tolerances so small that the norms overflow: start small
 }
 
 NormKind norm_from_name(const std::string& name) {
