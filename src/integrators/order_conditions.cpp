@@ -40,6 +40,7 @@ std::string weight_text(const std::vector<RootedTree>& trees, const RootedTree& 
 
 std::vector<RootedTree> generate() {
   std::vector<RootedTree> trees;
+  // [generate_trees]
   trees.push_back({1, {}, 1, "t", ""});
   for (int n = 2; n <= max_tree_order; ++n) {
     const std::size_t smaller = trees.size();  // every tree of order < n
@@ -64,6 +65,7 @@ std::vector<RootedTree> generate() {
     };
     extend(n - 1, 0);
   }
+  // [generate_trees]
   // Names: brackets with equal neighbours gathered into powers, and the written-out sum.
   for (RootedTree& t : trees) {
     if (t.order == 1) continue;
@@ -99,6 +101,7 @@ std::vector<Eigen::VectorXd> elementary_weights(const Eigen::MatrixXd& A, int ma
   const std::vector<RootedTree>& trees = rooted_trees();
   std::vector<Eigen::VectorXd> phi;
   std::vector<Eigen::VectorXd> A_phi;  // A Phi(t), the factor t contributes to a parent
+  // [elementary_weights]
   for (const RootedTree& t : trees) {
     if (t.order > max_order) break;
     Eigen::VectorXd w = Eigen::VectorXd::Ones(A.rows());
@@ -106,6 +109,7 @@ std::vector<Eigen::VectorXd> elementary_weights(const Eigen::MatrixXd& A, int ma
     A_phi.push_back(A * w);
     phi.push_back(std::move(w));
   }
+  // [elementary_weights]
   return phi;
 }
 
