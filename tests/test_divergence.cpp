@@ -40,8 +40,11 @@ std::vector<double> finite_numbers(const fs::path& path, bool& all_finite) {
 }
 
 /// Checks an output folder of a run that stopped early: final.dat a finite state of every particle, energy.dat
-/// one finite line per completed step plus t = 0, and run.txt naming what happened. Returns the steps done.
-long long check_kept_outputs(const fs::path& dir, int particles, const std::string& status_piece) {
+/// one finite line per completed step plus t = 0, and run.txt naming what happened: `status` (diverged or
+/// step_failed), `failure` (the step failure's kind, or "" for none), `failed_step` one past the steps done, and a
+/// reason. Returns the steps done.
+long long check_kept_outputs(const fs::path& dir, int particles, const std::string& expected_status,
+                             const std::string& expected_failure = "") {
   bool finite = false;
   const std::vector<std::string> final_lines = data_lines(dir / "final.dat");
   CHECK(final_lines.size() == static_cast<std::size_t>(particles));
@@ -50,15 +53,21 @@ long long check_kept_outputs(const fs::path& dir, int particles, const std::stri
   const std::vector<std::string> energy_lines = data_lines(dir / "energy.dat");
   finite_numbers(dir / "energy.dat", finite);
   CHECK(finite);
-  long long steps = -1;
-  std::string status;
+  long long steps = -1, failed_step = -1;
+  std::string status, failure, reason;
   for (const std::string& line : data_lines(dir / "run.txt")) {
     if (line.rfind("steps = ", 0) == 0) steps = std::atoll(line.c_str() + 8);
+    if (line.rfind("failed_step = ", 0) == 0) failed_step = std::atoll(line.c_str() + 14);
     if (line.rfind("status = ", 0) == 0) status = line.substr(9);
+    if (line.rfind("failure = ", 0) == 0) failure = line.substr(10);
+    if (line.rfind("reason = ", 0) == 0) reason = line.substr(9);
   }
   CAPTURE(status);
-  CHECK(contains(status, status_piece));
+  CHECK(status == expected_status);
+  CHECK(failure == expected_failure);
+  CHECK(!reason.empty());
   CHECK(steps >= 0);
+  CHECK(failed_step == steps + 1);
   CHECK(energy_lines.size() == static_cast<std::size_t>(steps + 1));
   return steps;
 }
@@ -104,7 +113,7 @@ TEST_CASE("explicit Euler at K = 1e5, h = 0.01 diverges: the run stops at the fi
   ScratchDir scratch;
   rs.out_dir = scratch.path().string();
   cloth::write_outputs(r, euler, rs);
-  CHECK(check_kept_outputs(scratch.path(), scene.particle_count(), "diverged at step") == r.steps);
+  CHECK(check_kept_outputs(scratch.path(), scene.particle_count(), "diverged") == r.steps);
   CHECK(cloth::report(r, euler, "test") == 3);
 }
 
@@ -192,7 +201,7 @@ TEST_CASE("ch02_explicit_euler --K 100000 --t-end 1: status 3, step and time on 
   CHECK(run.status == 3);
   CHECK(contains(run.err, "diverged at step "));
   CHECK(contains(run.err, ", t = "));
-  const long long steps = check_kept_outputs(cwd / "out", 400, "diverged at step");
+  const long long steps = check_kept_outputs(cwd / "out", 400, "diverged");
   CHECK(steps < 100);
   CHECK(contains(run.err, "diverged at step " + std::to_string(steps + 1) + ","));
 }
@@ -208,7 +217,7 @@ TEST_CASE("ch03_runge_kutta rk4 at K = 100000, h = 0.01 diverges: status 3 and t
   CAPTURE(run.err);
   CHECK(run.status == 3);
   CHECK(contains(run.err, "diverged at step "));
-  CHECK(check_kept_outputs(cwd / "out", 400, "diverged at step") < 100);
+  CHECK(check_kept_outputs(cwd / "out", 400, "diverged") < 100);
 }
 #endif
 
@@ -222,6 +231,7 @@ TEST_CASE("ch04_implicit_euler with Newton capped at 2 iterations on a stiff clo
   CHECK(run.status == 3);
   CHECK(contains(run.err, "step 1, t = 0.01"));
   CHECK(contains(run.err, "|r|_inf = "));
-  CHECK(check_kept_outputs(cwd / "out", 64, "step failed at step 1") == 0);
+  CHECK(contains(run.err, "step_failed (newton_not_converged) at step 1, t = 0.01 s: "));
+  CHECK(check_kept_outputs(cwd / "out", 64, "step_failed", "newton_not_converged") == 0);
 }
 #endif

@@ -7,11 +7,16 @@
 #include "model/single_spring.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/simulate.hpp"
+#include "program/interrupt.hpp"
+#include "program/limits.hpp"
+#include "program/output.hpp"
+#include "program/progress.hpp"
 #include "program/run_outputs.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 using namespace cloth;
 
@@ -41,21 +46,23 @@ double measure_single_spring(const SceneParams& params, const RunSettings& run, 
   const double predicted = 1 + (h * omega) * (h * omega);
   const double E0 = field.energy(xe, ve).total();
   const auto steps = static_cast<long long>(std::llround(run.t_end / h));
-  std::FILE* out = std::fopen((dir + "/single_spring.dat").c_str(), "w");
-  if (!out) throw InputError("--out: cannot write " + dir + "/single_spring.dat");
+  OutputFile file(dir + "/single_spring.dat");
+  std::FILE* out = file.get();
   std::fprintf(out, "# single undamped spring, K = %g N/m, m = %g kg, omega = %.10g rad/s, h = %g s, h omega = %.6g\n",
                params.stiffness, params.mass, omega, h, h * omega);
   std::fprintf(out, "# t E_explicit_euler E0*(1+(h omega)^2)^n E_symplectic_euler\n");
   std::fprintf(out, "%.10g %.17g %.17g %.17g\n", 0.0, E0, E0, E0);
   double E = E0;
-  for (long long n = 1; n <= steps; ++n) {
+  long long n = 1;
+  for (; n <= steps && interrupt_signal() == 0; ++n) {
     euler->step(h, xe, ve);
     symplectic->step(h, xs, vs);
     E = field.energy(xe, ve).total();
     std::fprintf(out, "%.10g %.17g %.17g %.17g\n", static_cast<double>(n) * h, E,
                  E0 * std::pow(predicted, static_cast<double>(n)), field.energy(xs, vs).total());
   }
-  std::fclose(out);
+  file.commit();
+  throw_if_interrupted();  // single_spring.dat is whole up to the last step taken
   const double measured = std::pow(E / E0, 1.0 / static_cast<double>(steps));
   std::printf("single spring: K = %g N/m, m = %g kg, omega = %.6g rad/s, h = %g s, h omega = %.6g\n", params.stiffness,
               params.mass, omega, h, h * omega);
@@ -65,6 +72,31 @@ double measure_single_spring(const SceneParams& params, const RunSettings& run, 
 }
 // [single_spring_measurement]
 
+// The report's three (K, D), run with both methods by --report-runs, each in its own subfolder.
+struct Config {
+  double K, D;
+};
+constexpr Config report_configs[] = {{50, 0}, {200, 0}, {200, 20}};
+const char* const report_methods[] = {"explicit", "symplectic"};
+
+std::string report_folder(const std::string& method, const Config& c) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s_K%g_D%g", method.c_str(), c.K, c.D);
+  return name;
+}
+
+// What each mode writes into --out, so that the folder is checked before anything runs and the files of another
+// mode, left by an earlier run, are removed.
+std::vector<std::string> outputs_of(bool single_spring, bool report_runs) {
+  if (single_spring) return {"single_spring.dat"};
+  if (!report_runs) return run_output_names();
+  std::vector<std::string> names = {"single_spring.dat"};
+  for (const char* m : report_methods)
+    for (const Config& c : report_configs)
+      for (const std::string& file : run_output_names()) names.push_back(report_folder(m, c) + "/" + file);
+  return names;
+}
+
 // One run of the report scene with `method`, outputs in `dir`; returns report()'s exit status.
 int run_cloth(const SceneParams& params, RunSettings run, const std::string& method, const std::string& dir,
               const std::string& program) {
@@ -72,22 +104,21 @@ int run_cloth(const SceneParams& params, RunSettings run, const std::string& met
   ForceField field(scene);
   auto stepper = make_stepper(stepper_name(method), field);
   run.out_dir = dir;
-  prepare_output_dir(dir);
   const double omega_max = fastest_rest_frequency(field);
   const double hw = run.dt * omega_max;
   const double hc_start = run.dt * fastest_damping_rate(field, scene.initial_positions(), scene.initial_velocities());
+  run.progress = terminal_progress(program);
   const RunResult result = simulate(*stepper, run);
   const double hc_end = run.dt * fastest_damping_rate(field, result.x, result.v);
-  write_outputs(result, *stepper, run,
-                {{"omega_max_at_rest", format_number(omega_max)},
-                 {"h_omega_max", format_number(hw)},
-                 {"explicit_euler_growth_per_step", format_number(1 + hw * hw, 10)},
-                 {"h_c_max_start", format_number(hc_start, 4)},
-                 {"h_c_max_end", format_number(hc_end, 4)}});
   std::printf("%s: K = %g, D = %g: fastest mode at rest omega_max = %.4g rad/s, h omega_max = %.4g, explicit Euler "
               "multiplies its energy by %.4g per step\n", program.c_str(), params.stiffness, params.damping, omega_max,
               hw, 1 + hw * hw);
-  return report(result, *stepper, program);
+  return finish_run(result, *stepper, run, program,
+                    {{"omega_max_at_rest", format_number(omega_max)},
+                     {"h_omega_max", format_number(hw)},
+                     {"explicit_euler_growth_per_step", format_number(1 + hw * hw, 10)},
+                     {"h_c_max_start", format_number(hc_start, 4)},
+                     {"h_c_max_end", format_number(hc_end, 4)}});
 }
 
 }  // namespace
@@ -114,29 +145,35 @@ int main(int argc, char** argv) {
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     if (single_spring && report_runs) throw InputError("--single-spring and --report-runs: choose one");
+    if (single_spring && opt.scene.damping != 0)
+      throw InputError("--single-spring: the growth factor is for D = 0; drop --damping");
+    // Every run of --report-runs is checked with the values it uses, before the first one starts.
+    for (const Config& c : report_runs ? std::vector<Config>(std::begin(report_configs), std::end(report_configs))
+                                       : std::vector<Config>{}) {
+      SceneParams p = opt.scene;
+      p.stiffness = c.K;
+      p.damping = c.D;
+      require_representable(p, opt.run);
+    }
+    std::vector<std::string> every_output = outputs_of(false, false);  // what any mode writes
+    for (const std::string& name : outputs_of(false, true)) every_output.push_back(name);
+    prepare_outputs(opt.run.out_dir, outputs_of(single_spring, report_runs), every_output);
     if (single_spring) {
-      if (opt.scene.damping != 0) throw InputError("--single-spring: the growth factor is for D = 0; drop --damping");
-      SceneParams p = single_spring_params(opt.scene.stiffness, 0);
-      prepare_output_dir(opt.run.out_dir);
-      measure_single_spring(p, opt.run, opt.run.out_dir);
+      measure_single_spring(single_spring_params(opt.scene.stiffness, 0), opt.run, opt.run.out_dir);
       return 0;
     }
     if (!report_runs) return run_cloth(opt.scene, opt.run, method, opt.run.out_dir, cli.program());
 
     // [report_runs]
-    struct Config {
-      double K, D;
-    };
-    const Config configs[] = {{50, 0}, {200, 0}, {200, 20}};
-    prepare_output_dir(opt.run.out_dir);
-    for (const std::string m : {"explicit", "symplectic"})
-      for (const Config& c : configs) {
+    for (const std::string m : report_methods)
+      for (const Config& c : report_configs) {
         SceneParams p = opt.scene;
         p.stiffness = c.K;
         p.damping = c.D;
-        char name[64];
-        std::snprintf(name, sizeof name, "/%s_K%g_D%g", m.c_str(), c.K, c.D);
-        run_cloth(p, opt.run, m, opt.run.out_dir + name, cli.program());  // a divergence is a result here
+        // A divergence is a result here; an interruption ends the program (the interrupted run said so).
+        if (const int status = run_cloth(p, opt.run, m, opt.run.out_dir + "/" + report_folder(m, c), cli.program());
+            status >= 128)
+          return status;
       }
     measure_single_spring(single_spring_params(200, 0), opt.run, opt.run.out_dir);
     // [report_runs]

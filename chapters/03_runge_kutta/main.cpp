@@ -4,15 +4,20 @@
 #include "analysis/fastest_modes.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "base/text.hpp"
 #include "model/single_spring.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/simulate.hpp"
+#include "program/limits.hpp"
+#include "program/output.hpp"
+#include "program/progress.hpp"
 #include "program/run_outputs.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 using namespace cloth;
 
@@ -26,27 +31,46 @@ int run_cloth(const SceneParams& params, RunSettings run, const ButcherTableau& 
   ForceField field(scene);
   ExplicitRungeKutta stepper(field, tableau);
   run.out_dir = dir;
-  prepare_output_dir(dir);
+  run.progress = terminal_progress(program);
   const double hc_start = run.dt * fastest_damping_rate(field, scene.initial_positions(), scene.initial_velocities());
   const RunResult result = simulate(stepper, run);
   const double hc_end = run.dt * fastest_damping_rate(field, result.x, result.v);
-  write_outputs(result, stepper, run,
-                {{"h_c_max_start", format_number(hc_start, 4)},
-                 {"h_c_max_end", format_number(hc_end, 4)},
-                 {"tableau", tableau.name},
-                 {"tableau_source", source},
-                 {"stages", std::to_string(tableau.stages())},
-                 {"order", std::to_string(tableau.order)}});
-  std::FILE* out = std::fopen((dir + "/lowest_point.dat").c_str(), "w");
-  if (!out) throw InputError("--out: cannot write " + dir + "/lowest_point.dat");
-  std::fprintf(out, "# t lowest_z (the lowest particle of the cloth, from frames.dat)\n");
-  for (const Frame& f : result.frames) {
-    double lowest = std::numeric_limits<double>::infinity();
-    for (Eigen::Index k = 2; k < f.positions.size(); k += 3) lowest = std::min(lowest, f.positions[k]);
-    std::fprintf(out, "%.10g %.10g\n", f.t, lowest);
+  {
+    OutputFile file(dir + "/lowest_point.dat");
+    std::fprintf(file.get(), "# t lowest_z (the lowest particle of the cloth, from frames.dat)\n");
+    for (const Frame& f : result.frames) {
+      double lowest = std::numeric_limits<double>::infinity();
+      for (Eigen::Index k = 2; k < f.positions.size(); k += 3) lowest = std::min(lowest, f.positions[k]);
+      std::fprintf(file.get(), "%.10g %.10g\n", f.t, lowest);
+    }
+    file.commit();
   }
-  std::fclose(out);
-  return report(result, stepper, program);
+  return finish_run(result, stepper, run, program,
+                    {{"h_c_max_start", format_number(hc_start, 4)},
+                     {"h_c_max_end", format_number(hc_end, 4)},
+                     {"tableau", tableau.name},
+                     {"tableau_source", source},
+                     {"stages", std::to_string(tableau.stages())},
+                     {"order", std::to_string(tableau.order)}});
+}
+
+// The report's three (K, D) of --report-runs, each in a subfolder named after the tableau: the name comes from
+// the tableau file, so it is reduced to a safe file name first, and the folder can only ever be inside --out.
+struct Config {
+  double K, D;
+};
+constexpr Config report_configs[] = {{50, 0}, {200, 0}, {200, 20}};
+
+std::string report_folder(const ButcherTableau& tableau, const Config& c) {
+  char suffix[64];
+  std::snprintf(suffix, sizeof suffix, "_K%g_D%g", c.K, c.D);
+  return safe_file_name(tableau.name, 48, "tableau") + suffix;
+}
+
+std::vector<std::string> single_run_outputs() {
+  std::vector<std::string> names = run_output_names();
+  names.emplace_back("lowest_point.dat");
+  return names;
 }
 
 // [observed_order]
@@ -59,8 +83,8 @@ void measure_orders(const std::string& dir) {
   ForceField field(scene);
   const OscillatorState exact = single_spring_exact(K, D, m, s0, T);
   const double omega = std::sqrt(K / m);
-  std::FILE* out = std::fopen((dir + "/order.dat").c_str(), "w");
-  if (!out) throw InputError("--out: cannot write " + dir + "/order.dat");
+  OutputFile file(dir + "/order.dat");
+  std::FILE* out = file.get();
   std::fprintf(out, "# h");
   for (const ButcherTableau& t : builtin_tableaus()) std::fprintf(out, " %s", t.name.c_str());
   std::fprintf(out, "\n");
@@ -81,7 +105,7 @@ void measure_orders(const std::string& dir) {
     }
     std::fprintf(out, "\n");
   }
-  std::fclose(out);
+  file.commit();
 }
 // [observed_order]
 
@@ -108,22 +132,35 @@ int main(int argc, char** argv) {
       throw InputError(std::string("--tableau: ") + e.what());
     }
     const bool builtin = tableau.name == tableau_argument;
-    const std::string source = builtin ? "builtin" : tableau_argument;
-    if (!report_runs) return run_cloth(opt.scene, opt.run, tableau, source, opt.run.out_dir, cli.program());
+    const std::string source = builtin ? "builtin" : escaped(tableau_argument);
+    std::vector<std::string> report_outputs = {"order.dat"};
+    for (const Config& c : report_configs)
+      for (const std::string& name : single_run_outputs()) report_outputs.push_back(report_folder(tableau, c) + "/" + name);
+    if (!report_runs) {
+      prepare_outputs(opt.run.out_dir, single_run_outputs(), report_outputs);
+      return run_cloth(opt.scene, opt.run, tableau, source, opt.run.out_dir, cli.program());
+    }
 
-    struct Config {
-      double K, D;
-    };
-    const Config configs[] = {{50, 0}, {200, 0}, {200, 20}};
-    prepare_output_dir(opt.run.out_dir);
-    opt.run.frames = static_cast<int>(std::llround(opt.run.t_end / opt.run.dt));  // a frame per step, for lowest_point.dat
-    for (const Config& c : configs) {
+    // A frame per step (up to --frames' largest value), for lowest_point.dat: the frames are then set by --t-end /
+    // --dt, and checked as such, with the values each run uses, before the first one starts.
+    opt.run.frames = static_cast<int>(std::min<long long>(step_count(opt.run), 100000));
+    require_run_memory(opt.scene, opt.run, explicit_bytes_per_particle(), "--t-end");
+    for (const Config& c : report_configs) {
       SceneParams p = opt.scene;
       p.stiffness = c.K;
       p.damping = c.D;
-      char name[64];
-      std::snprintf(name, sizeof name, "/%s_K%g_D%g", tableau.name.c_str(), c.K, c.D);
-      run_cloth(p, opt.run, tableau, source, opt.run.out_dir + name, cli.program());
+      require_representable(p, opt.run);
+    }
+    prepare_outputs(opt.run.out_dir, report_outputs, single_run_outputs());
+    for (const Config& c : report_configs) {
+      SceneParams p = opt.scene;
+      p.stiffness = c.K;
+      p.damping = c.D;
+      // A divergence is a result here; an interruption ends the program (the interrupted run said so).
+      if (const int status = run_cloth(p, opt.run, tableau, source, opt.run.out_dir + "/" + report_folder(tableau, c),
+                                       cli.program());
+          status >= 128)
+        return status;
     }
     measure_orders(opt.run.out_dir);
     return 0;

@@ -5,12 +5,18 @@
 #include "base/input_error.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
+#include "program/interrupt.hpp"
+#include "program/limits.hpp"
+#include "program/output.hpp"
+#include "program/progress.hpp"
 #include "program/run_outputs.hpp"
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 using namespace cloth;
 
@@ -30,22 +36,20 @@ struct Outcome {
   RunResult result;
 };
 
-// One run of the cloth with `newton`, outputs in `dir`.
+// One run of the cloth with `newton` (validated before anything was written), outputs in `dir`.
 Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettings& newton, const std::string& dir,
                   const std::string& program) {
   const Scene scene(params);
-  validate(newton, scene);  // before anything is written
   ForceField field(scene);
   ImplicitEuler stepper(field, newton);  // resolves the automatic solver choice
   run.out_dir = dir;
-  prepare_output_dir(dir);
+  run.progress = terminal_progress(program);
   RunResult result = simulate(stepper, run);
-  write_outputs(result, stepper, run,
-                {{"linear_solver", linear_solver_name(stepper.settings().solver)},
-                 {"jacobian", treatment_name(newton.treatment)},
-                 {"newton_tol", format_number(newton.tolerance, 10)},
-                 {"newton_max_iter", std::to_string(newton.max_iterations)}});
-  const int status = report(result, stepper, program);
+  const int status = finish_run(result, stepper, run, program,
+                                {{"linear_solver", linear_solver_name(stepper.settings().solver)},
+                                 {"jacobian", treatment_name(newton.treatment)},
+                                 {"newton_tol", format_number(newton.tolerance, 10)},
+                                 {"newton_max_iter", std::to_string(newton.max_iterations)}});
   if (result.steps > 0)
     std::printf("  Newton iterations per step: %.3f (%lld in %lld steps), %lld factorizations\n",
                 static_cast<double>(result.counters.newton_iterations) / static_cast<double>(result.steps),
@@ -72,8 +76,8 @@ void stiff_step_residuals(const SceneParams& report_scene, const std::string& di
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   stepper.step(0.01, x, v);  // if it fails the history still shows how far it got
   const std::vector<double>& r = stepper.residual_history();
-  std::FILE* out = std::fopen((dir + "/residuals.dat").c_str(), "w");
-  if (!out) throw InputError("--out: cannot write " + dir + "/residuals.dat");
+  OutputFile file(dir + "/residuals.dat");
+  std::FILE* out = file.get();
   std::fprintf(out, "# first step of the report scene, K = 1e5, D = 0, h = 0.01, exact Jacobian, LU\n");
   std::fprintf(out, "# k |r_k|_inf |r_k|/|r_(k-1)|^2\n");
   std::printf("stiff step (K = 1e5, h = 0.01, exact Jacobian, LU): |r_k|_inf =");
@@ -82,7 +86,7 @@ void stiff_step_residuals(const SceneParams& report_scene, const std::string& di
     std::printf(" %.3g", r[k]);
   }
   std::printf("\n");
-  std::fclose(out);
+  file.commit();
 }
 // [stiff_step_residuals]
 
@@ -94,46 +98,64 @@ void iterations_per_step(const SceneParams& params, const RunSettings& run, cons
   ForceField field(scene);
   ImplicitEuler stepper(field, newton);
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
-  std::FILE* out = std::fopen(path.c_str(), "w");
-  if (!out) throw InputError("--out: cannot write " + path);
+  OutputFile file(path);
+  std::FILE* out = file.get();
   std::fprintf(out, "# t newton_iterations final_residual (K = %g, D = %g, h = %g, jacobian %s)\n", params.stiffness,
                params.damping, run.dt, treatment_name(newton.treatment));
   const auto steps = std::llround(run.t_end / run.dt);
-  for (long long n = 1; n <= steps; ++n) {
+  for (long long n = 1; n <= steps && interrupt_signal() == 0; ++n) {
     const long long before = stepper.counters().newton_iterations;
     const bool ok = stepper.step(run.dt, x, v);
     std::fprintf(out, "%.10g %lld %.6e\n", static_cast<double>(n) * run.dt,
                  stepper.counters().newton_iterations - before, stepper.residual_history().back());
     if (!ok) break;
   }
-  std::fclose(out);
+  file.commit();  // whole up to the last step taken, when interrupted too
+  throw_if_interrupted();
+}
+
+// The report's three (K, D), each run with full Newton and with one iteration, in subfolders of --out.
+struct Config {
+  double K, D;
+};
+constexpr Config report_configs[] = {{50, 0}, {200, 0}, {200, 20}};
+
+std::string report_folder(const char* variant, const Config& c) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s_K%g_D%g", variant, c.K, c.D);
+  return name;
+}
+
+std::vector<std::string> report_outputs() {
+  std::vector<std::string> names = {"comparison.dat", "residuals.dat", "iterations_symmetric.dat",
+                                    "iterations_definite.dat"};
+  for (const Config& c : report_configs)
+    for (const char* variant : {"full", "one"})
+      for (const std::string& file : run_output_names()) names.push_back(report_folder(variant, c) + "/" + file);
+  return names;
 }
 
 // The report's three (K, D) with full Newton and with one Newton iteration, the stiff step's residuals, and the
 // definite (Choi & Ko) matrix against the symmetric one at K = 50.
-void report_runs(const Options& opt, const NewtonSettings& newton, const std::string& program) {
+// `newton_for(K, D)` gives the settings of the full-Newton run at (K, D), as main checked them before any run.
+int report_runs(const Options& opt, const std::function<NewtonSettings(double, double)>& newton_for,
+                const NewtonSettings& newton, const std::string& program) {
   const std::string dir = opt.run.out_dir;
-  prepare_output_dir(dir);
-  struct Config {
-    double K, D;
-  };
-  const Config configs[] = {{50, 0}, {200, 0}, {200, 20}};
-  std::FILE* summary = std::fopen((dir + "/comparison.dat").c_str(), "w");
-  if (!summary) throw InputError("--out: cannot write " + dir + "/comparison.dat");
+  OutputFile summary_file(dir + "/comparison.dat");
+  std::FILE* summary = summary_file.get();
   std::fprintf(summary, "# K D newton_per_step_full newton_per_step_one factorizations_full factorizations_one "
                         "wall_full wall_one E_final_full E_final_one max_position_difference\n");
-  for (const Config& c : configs) {
+  for (const Config& c : report_configs) {
     SceneParams p = opt.scene;
     p.stiffness = c.K;
     p.damping = c.D;
-    char name[64];
-    std::snprintf(name, sizeof name, "/full_K%g_D%g", c.K, c.D);
-    NewtonSettings full = newton;
-    const Outcome a = run_cloth(p, opt.run, full, dir + name, program);
-    std::snprintf(name, sizeof name, "/one_K%g_D%g", c.K, c.D);
-    NewtonSettings one = newton;
+    const NewtonSettings full = newton_for(c.K, c.D);
+    const Outcome a = run_cloth(p, opt.run, full, dir + "/" + report_folder("full", c), program);
+    if (a.status >= 128) return a.status;  // interrupted: the run said so; comparison.dat is not written
+    NewtonSettings one = full;
     one.max_iterations = 1;
-    const Outcome b = run_cloth(p, opt.run, one, dir + name, program);
+    const Outcome b = run_cloth(p, opt.run, one, dir + "/" + report_folder("one", c), program);
+    if (b.status >= 128) return b.status;
     const double diff = a.result.t == b.result.t ? (a.result.x - b.result.x).lpNorm<Eigen::Infinity>() : NAN;
     const auto per_step = [](const RunResult& r) {
       return r.steps ? static_cast<double>(r.counters.newton_iterations) / static_cast<double>(r.steps) : 0.0;
@@ -145,8 +167,9 @@ void report_runs(const Options& opt, const NewtonSettings& newton, const std::st
     std::printf("K = %g, D = %g: full Newton %.3f iterations/step, one iteration: largest position difference at "
                 "t = %g s: %.4g m\n", c.K, c.D, per_step(a.result), a.result.t, diff);
   }
-  std::fclose(summary);
+  summary_file.commit();
   stiff_step_residuals(opt.scene, dir);
+  throw_if_interrupted();
   SceneParams p = opt.scene;
   p.stiffness = 50;
   p.damping = 0;
@@ -155,7 +178,19 @@ void report_runs(const Options& opt, const NewtonSettings& newton, const std::st
   definite.treatment = StiffnessTreatment::definite;
   iterations_per_step(p, opt.run, symmetric, dir + "/iterations_symmetric.dat");
   iterations_per_step(p, opt.run, definite, dir + "/iterations_definite.dat");
+  return 0;
 }
+
+// [jacobian_default]
+// Without --jacobian, the most exact matrix the chosen solver can take: CG needs a symmetric positive definite
+// matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry), LDU and LU take the exact one. An explicit
+// incompatible choice is refused by validate(NewtonSettings) with exit status 2.
+StiffnessTreatment default_treatment(LinearSolverKind solver, bool damped) {
+  if (solver == LinearSolverKind::cg) return StiffnessTreatment::definite;
+  if (solver == LinearSolverKind::ldlt && damped) return StiffnessTreatment::symmetric;
+  return StiffnessTreatment::exact;
+}
+// [jacobian_default]
 
 }  // namespace
 
@@ -204,21 +239,41 @@ int main(int argc, char** argv) {
                  [&] { want_report_runs = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    // [jacobian_default]
-    // Without --jacobian, the most exact matrix the chosen solver can take: CG needs a symmetric positive
-    // definite matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry), LDU and LU take the exact one.
-    // An explicit incompatible choice is refused by validate(NewtonSettings) with exit status 2.
-    const bool damped = Scene(opt.scene).has_damping();
-    if (jacobian) newton.treatment = *jacobian;
-    else if (newton.solver == LinearSolverKind::cg) newton.treatment = StiffnessTreatment::definite;
-    else if (newton.solver == LinearSolverKind::ldlt && damped) newton.treatment = StiffnessTreatment::symmetric;
-    else newton.treatment = StiffnessTreatment::exact;
-    // [jacobian_default]
-    if (want_report_runs) {
-      validate(newton, Scene(opt.scene));
-      report_runs(opt, newton, cli.program());
-      return 0;
+    const auto particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
+    // The settings of a run at (K, D): the Newton matrix the solver takes unless --jacobian chose one.
+    const auto newton_for = [&](double K, double D) {
+      SceneParams p = opt.scene;
+      p.stiffness = K;
+      p.damping = D;
+      NewtonSettings s = newton;
+      s.treatment = jacobian ? *jacobian : default_treatment(newton.solver, Scene(p).has_damping());
+      validate(s, Scene(p));
+      return s;
+    };
+    if (!want_report_runs) {
+      const NewtonSettings settings = newton_for(opt.scene.stiffness, opt.scene.damping);
+      require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles));
+      prepare_outputs(opt.run.out_dir, run_output_names(), report_outputs());
+      return run_cloth(opt.scene, opt.run, settings, opt.run.out_dir, cli.program()).status;
     }
-    return run_cloth(opt.scene, opt.run, newton, opt.run.out_dir, cli.program()).status;
+    // Every run of --report-runs is checked, with the values it uses, before the first one starts.
+    for (const Config& c : report_configs) {
+      SceneParams p = opt.scene;
+      p.stiffness = c.K;
+      p.damping = c.D;
+      try {
+        newton_for(c.K, c.D);
+      } catch (const InputError& e) {
+        throw InputError(std::string(e.what()) + " (--report-runs runs K = " + format_number(c.K) +
+                         ", D = " + format_number(c.D) + ")");
+      }
+      require_representable(p, opt.run);
+    }
+    if (newton.solver == LinearSolverKind::cg)
+      throw InputError("--linear-solver cg: --report-runs compares the symmetric and the definite Newton matrix, and "
+                       "cg takes only the definite one: expected ldlt, ldu or lu");
+    require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles), "--frames", 2);
+    prepare_outputs(opt.run.out_dir, report_outputs(), run_output_names());
+    return report_runs(opt, newton_for, newton, cli.program());
   });
 }

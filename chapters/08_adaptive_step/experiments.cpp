@@ -3,6 +3,7 @@
 
 #include "integrators/adaptive_simulate.hpp"
 #include "integrators/embedded_tableaus.hpp"
+#include "program/interrupt.hpp"
 #include "program/output.hpp"
 
 #include <cmath>
@@ -149,9 +150,15 @@ void estimate_check(const Options& opt, double tol, int substeps) {
 
 }  // namespace
 
+std::vector<std::string> experiment_outputs() {
+  return {"hard_case.dat", "pairs.dat", "jump_response.dat", "estimate_check.dat", "estimate_summary.dat"};
+}
+
 void run_experiments(const Options& opt, bool quick) {
   hard_case(opt, 1e-6);
+  throw_if_interrupted();
   pair_summary(opt, quick ? std::vector<double>{1e-4, 1e-6} : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8});
+  throw_if_interrupted();
   jump_response(opt);
   estimate_check(opt, 1e-5, quick ? 32 : 64);
 }

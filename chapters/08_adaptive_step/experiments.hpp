@@ -4,7 +4,13 @@
 
 #include "program/command_line.hpp"
 
+#include <string>
+#include <vector>
+
 namespace ch08 {
+
+/// The files run_experiments writes, relative to --out.
+std::vector<std::string> experiment_outputs();
 
 /// Runs every study and writes its data into opt.run.out_dir (see experiments.cpp).
 void run_experiments(const cloth::Options& opt, bool quick);

@@ -5,6 +5,7 @@
 
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "base/text.hpp"
 #include "integrators/adaptive_simulate.hpp"
 #include "integrators/embedded_tableaus.hpp"
 #include "program/command_line.hpp"
@@ -40,7 +41,6 @@ int run_once(const Options& opt, const ButcherTableau& tableau, const std::strin
   const Scene scene(opt.scene);
   ForceField field(scene);
   EmbeddedRungeKutta rk(field, tableau);
-  prepare_output_dir(opt.run.out_dir);
   const AdaptiveResult result = adaptive_simulate(rk, opt.run, settings);
   const auto num = [](double x) { return format_number(x, 10); };
   std::vector<std::pair<std::string, std::string>> extra = {{"tableau", tableau.name},
@@ -60,10 +60,8 @@ int run_once(const Options& opt, const ButcherTableau& tableau, const std::strin
                  {"smallest_step", num(result.smallest_step)},
                  {"largest_step", num(result.largest_step)},
                  {"refused_for_turn", std::to_string(result.refused_for_turn)}};
-  if (result.failure != StepFailureKind::none) extra.emplace_back("failure", step_failure_name(result.failure));
-  write_outputs(result, rk, opt.run, extra);
   write_steps(opt.run.out_dir + "/steps.dat", result.attempts);
-  return report(result, rk, program);
+  return finish_run(result, rk, opt.run, program, extra);
 }
 
 }  // namespace
@@ -103,8 +101,10 @@ int main(int argc, char** argv) {
     settings.tolerances = {tol.value_or(rtol.value_or(1e-6)), tol.value_or(atol.value_or(1e-6)),
                            norm.value_or(NormKind::rms)};
     if (quick && !experiments) throw InputError("--quick: only with --experiments");
+    std::vector<std::string> single_run = run_output_names();
+    single_run.emplace_back("steps.dat");
     if (experiments) {
-      prepare_output_dir(opt.run.out_dir);
+      prepare_outputs(opt.run.out_dir, ch08::experiment_outputs(), single_run);
       ch08::run_experiments(opt, quick);
       return 0;
     }
@@ -114,7 +114,8 @@ int main(int argc, char** argv) {
     } catch (const InputError& e) {
       throw InputError(std::string("--tableau: ") + e.what());
     }
-    const std::string source = tableau.name == tableau_argument ? "builtin" : tableau_argument;
+    const std::string source = tableau.name == tableau_argument ? "builtin" : escaped(tableau_argument);
+    prepare_outputs(opt.run.out_dir, single_run, ch08::experiment_outputs());
     return run_once(opt, tableau, source, settings, cli.program());
   });
 }

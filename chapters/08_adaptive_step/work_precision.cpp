@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
     bool t_end_given = false;
     for (int k = 1; k < argc; ++k) t_end_given = t_end_given || std::string(argv[k]) == "--t-end";
     const double T = t_end_given ? opt.run.t_end : 1.0;
-    prepare_output_dir(opt.run.out_dir);
+    prepare_outputs(opt.run.out_dir, {"work_precision.dat", "levels.dat"});
     const Scene scene(opt.scene);
     const std::string dir = opt.run.out_dir + "/";
 

@@ -78,15 +78,19 @@ AdaptiveResult adaptive_simulate(EmbeddedRungeKutta& rk, const Vector& x0, const
   result.smallest_step = std::numeric_limits<double>::infinity();
   // [adaptive_loop]
   while (t < T) {
+    // A stop request (SIGINT, SIGTERM) ends the run between two attempts, with every output up to here whole.
+    if (run.stop != nullptr && run.stop->load(std::memory_order_relaxed) != 0) {
+      result.status = RunStatus::interrupted;
+      result.message = "interrupted after step " + std::to_string(result.steps) + ", t = " + format_number(t) + " s";
+      break;
+    }
     const bool last = t + h >= T * (1 - 4 * eps);  // the step that ends the run lands on T exactly
     const double step = last ? T - t : h;
     const double floor = std::max(settings.min_step, 64 * eps * std::max(t, T));
     if (step < floor && !last) {
-      result.status = RunStatus::step_failed;
-      result.failure = StepFailureKind::step_size_too_small;
-      result.message = "step failed at step " + std::to_string(result.steps + 1) + ", t = " + format_number(t, 10) +
-                       ": step size too small (h = " + format_number(step, 3) + " s is below the floor " +
-                       format_number(floor, 3) + " s) with " + std::to_string(result.rejected) + " rejected steps";
+      stop_run(result, RunStatus::step_failed, StepFailureKind::step_size_too_small, result.steps + 1, t + step,
+               "step size too small: h = " + format_number(step, 3) + " s is below the floor " +
+                   format_number(floor, 3) + " s, after " + std::to_string(result.rejected) + " rejected steps");
       break;
     }
     rk.attempt(step, x, v);
@@ -113,9 +117,7 @@ AdaptiveResult adaptive_simulate(EmbeddedRungeKutta& rk, const Vector& x0, const
       continue;
     }
     if (const std::string why = divergence_reason(rk.candidate_x(), rk.candidate_v(), radius); !why.empty()) {
-      result.status = RunStatus::diverged;
-      result.message = "diverged at step " + std::to_string(result.steps + 1) + ", t = " + format_number(t + step, 6) +
-                       " s: " + why;
+      stop_run(result, RunStatus::diverged, StepFailureKind::none, result.steps + 1, t + step, why);
       break;
     }
     // Frames inside (t, t + step] from the step's two ends, before the candidate replaces the state.

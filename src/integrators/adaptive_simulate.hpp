@@ -38,7 +38,6 @@ struct StepAttempt {
 
 /// What an adaptive run produced: the fixed-step RunResult (steps = accepted steps) and the step statistics.
 struct AdaptiveResult : RunResult {
-  StepFailureKind failure = StepFailureKind::none;  ///< step_size_too_small when the floor stopped the run
   long long accepted = 0, rejected = 0;
   long long refused_for_turn = 0;  ///< rejected steps the estimate accepted but a spring turned too far across
   double smallest_step = 0, largest_step = 0;  ///< over the accepted steps
@@ -48,7 +47,8 @@ struct AdaptiveResult : RunResult {
 /// Called after every attempt with the attempt and the state it started from (for studies of the hard case).
 using AttemptObserver = std::function<void(const StepAttempt&, const Vector& x, const Vector& v)>;
 
-/// Runs the scene's initial state to run.t_end. With `record`, energy.dat's samples are taken at every accepted
+/// Runs the scene's initial state to run.t_end (stopping between two attempts when run.stop is raised). With
+/// `record`, energy.dat's samples are taken at every accepted
 /// step and the frames at t = k T / frames by cubic Hermite interpolation of the positions between the ends of the
 /// step that contains them (from x and v = x' at both ends: no extra evaluation, error O(h^4)). Without recording
 /// the step loop allocates nothing.

@@ -33,8 +33,9 @@ struct ButcherTableau {
 
 /// Checks that the tableau is one the explicit engine runs and that it has the order it claims:
 /// square A, strictly lower triangular (explicit), c_i = sum_j a_ij, and the order conditions through the claimed
-/// order (1 to 8, generated from the rooted trees: order_conditions.hpp) to rounding, for b and for b-hat.
-/// Throws InputError naming the first row or condition that fails.
+/// order (1 to 8, generated from the rooted trees: order_conditions.hpp) to rounding, for b and for b-hat, but not
+/// those of the next order (a claim lower than the row's order is refused too). Throws InputError naming the
+/// first row or condition that fails.
 void validate(const ButcherTableau& tableau);
 
 /// The largest |residual| of the order conditions of order p (1 to 8) for b, or for b-hat when `embedded`;
@@ -49,11 +50,14 @@ const std::vector<ButcherTableau>& builtin_tableaus();
 ButcherTableau tableau_from_argument(const std::string& name_or_path);
 
 /// Reads the text format of Chapter 3 (see chapters/03_runge_kutta/rk4_report.tableau), with the optional
-/// embedded row of Chapter 8 ('bhat ...' and 'embedded_order q'; chapters/08_adaptive_step/dopri5.tableau).
-/// Throws InputError.
+/// embedded row of Chapter 8 ('bhat ...' and 'embedded_order q'; chapters/08_adaptive_step/dopri5.tableau), from
+/// a regular file of printable text and at most 64 KiB (base/text_file.hpp). Throws InputError naming the file and
+/// what is wrong: not a regular file, too large, a byte that is not text, a line of the format, a key ('name',
+/// 'order', 'embedded_order') given twice, or an order claim the conditions contradict.
 ButcherTableau read_tableau(const std::string& path);
 
-/// Parses that format from text; `source` names it in error messages.
+/// Parses that format from text; `source` names it in error messages (escaped). The name the text gives is any
+/// word: a program that makes a file name of it reduces it with safe_file_name (base/text.hpp) first.
 ButcherTableau parse_tableau(const std::string& text, const std::string& source);
 
 }  // namespace cloth

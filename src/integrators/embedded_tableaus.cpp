@@ -3,8 +3,9 @@
 #include "integrators/embedded_tableaus.hpp"
 
 #include "base/input_error.hpp"
+#include "base/text.hpp"
 
-#include <fstream>
+#include <sys/stat.h>
 
 namespace cloth {
 
@@ -120,11 +121,13 @@ ButcherTableau embedded_tableau_from_argument(const std::string& name_or_path) {
     if (t.name == name_or_path) return t;
     names += (names.empty() ? "" : ", ") + t.name;
   }
-  if (!std::ifstream(name_or_path).good())
-    throw InputError("'" + name_or_path + "' is neither a built-in embedded pair (" + names + ") nor a readable file");
+  struct stat info {};  // anything that exists is taken for a file, as in tableau_from_argument
+  if (::stat(name_or_path.c_str(), &info) != 0)
+    throw InputError("'" + escaped(name_or_path) + "' is neither a built-in embedded pair (" + names +
+                     ") nor a readable file");
   ButcherTableau t = read_tableau(name_or_path);
   if (!t.has_embedded())
-    throw InputError(name_or_path + ": the tableau has no embedded row: an adaptive step needs a second weight row "
+    throw InputError(escaped(name_or_path) + ": the tableau has no embedded row: an adaptive step needs a second weight row "
                      "'bhat ...' with its 'embedded_order q'");
   return t;
 }

@@ -1,12 +1,32 @@
 // The fixed-step driver shared by every simulating chapter.
 #include "integrators/simulate.hpp"
 
+#include "base/format_number.hpp"
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 
 namespace cloth {
+
+const char* run_status_name(RunStatus status) {
+  switch (status) {
+    case RunStatus::ok: return "ok";
+    case RunStatus::diverged: return "diverged";
+    case RunStatus::step_failed: return "step_failed";
+    case RunStatus::interrupted: return "interrupted";
+  }
+  return "unknown";
+}
+
+long long step_count(const RunSettings& settings) {
+  return static_cast<long long>(std::ceil(settings.t_end / settings.dt * (1 - 1e-12)));
+}
+
+int frame_count(const RunSettings& settings) {
+  return static_cast<int>(std::min<long long>(settings.frames, step_count(settings)));
+}
 
 double divergence_radius(const Scene& scene, double t_end) {
   const Grid& g = scene.grid();
@@ -31,6 +51,18 @@ std::string divergence_reason(const Vector& x, const Vector& v, double radius) {
   return {};
 }
 
+void stop_run(RunResult& result, RunStatus status, StepFailureKind kind, long long step, double t,
+              std::string reason) {
+  result.status = status;
+  result.failure = kind;
+  result.failed_step = step;
+  result.failed_t = t;
+  result.reason = std::move(reason);
+  result.message = run_status_name(status);
+  if (status == RunStatus::step_failed) result.message.append(" (").append(step_failure_name(kind)).append(")");
+  result.message += " at step " + std::to_string(step) + ", t = " + format_number(t) + " s: " + result.reason;
+}
+
 RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record) {
   ForceField& field = stepper.field();
   const Scene& scene = field.scene();
@@ -39,19 +71,20 @@ RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record) {
   result.v = scene.initial_velocities();
   const double h = settings.dt;
   const double T = settings.t_end;
-  const auto steps = static_cast<long long>(std::ceil(T / h * (1 - 1e-12)));
+  const long long steps = step_count(settings);
+  const int frames = frame_count(settings);
   const double radius = divergence_radius(scene, T);
 
   // Every recording buffer is sized here, so the step loop below allocates nothing.
-  std::size_t frame_count = 0;
+  std::size_t frames_recorded = 0;
   const auto record_frame = [&](double t) {
-    Frame& frame = result.frames[frame_count++];
+    Frame& frame = result.frames[frames_recorded++];
     frame.t = t;
     scene.all_positions(result.x, frame.positions);
   };
   if (record) {
     result.energy.reserve(static_cast<std::size_t>(steps) + 1);
-    result.frames.assign(static_cast<std::size_t>(settings.frames) + 1, Frame{0.0, Vector(3 * scene.particle_count())});
+    result.frames.assign(static_cast<std::size_t>(frames) + 1, Frame{0.0, Vector(3 * scene.particle_count())});
     result.energy.push_back({0.0, field.energy(result.x, result.v)});
     record_frame(0.0);
   }
@@ -64,22 +97,23 @@ RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record) {
   for (long long k = 0; k < steps; ++k) {
     const double t0 = static_cast<double>(k) * h;
     const double t1 = k + 1 == steps ? T : static_cast<double>(k + 1) * h;
+    // A stop request (SIGINT, SIGTERM) ends the run between two steps, with every output up to here whole.
+    if (settings.stop != nullptr && settings.stop->load(std::memory_order_relaxed) != 0) {
+      result.status = RunStatus::interrupted;
+      result.message = "interrupted after step " + std::to_string(k) + ", t = " + format_number(t0) + " s";
+      break;
+    }
     x_prev = result.x;
     v_prev = result.v;
     // Every step is exactly h (t1 - t0 would differ from h by rounding from step to step); only a last step
     // that T shortens is not.
     const double step_h = k + 1 == steps && std::abs(T - t0 - h) > 1e-9 * h ? T - t0 : h;
     if (!stepper.step(step_h, result.x, result.v)) {
-      result.status = RunStatus::step_failed;
-      result.message = "step failed at step " + std::to_string(k + 1) + ", t = " + std::to_string(t1) + ": " +
-                       stepper.failure().reason;
+      stop_run(result, RunStatus::step_failed, stepper.failure().kind, k + 1, t1, stepper.failure().reason);
       break;
     }
-    if (const std::string why = divergence_reason(result.x, result.v, radius); !why.empty()) {
-      result.status = RunStatus::diverged;
-      char buf[320];
-      std::snprintf(buf, sizeof buf, "diverged at step %lld, t = %.6g s: %s", k + 1, t1, why.c_str());
-      result.message = buf;
+    if (std::string why = divergence_reason(result.x, result.v, radius); !why.empty()) {
+      stop_run(result, RunStatus::diverged, StepFailureKind::none, k + 1, t1, std::move(why));
       result.x = x_prev;  // keep the last sane state
       result.v = v_prev;
       break;
@@ -88,15 +122,17 @@ RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record) {
     result.t = t1;
     if (record) {
       result.energy.push_back({t1, field.energy(result.x, result.v)});
-      if (next_frame <= settings.frames && t1 >= T * next_frame / settings.frames - 1e-9 * h) {
+      if (next_frame <= frames && t1 >= T * next_frame / frames - 1e-9 * h) {
         record_frame(t1);
         ++next_frame;
       }
     }
+    if (settings.progress) settings.progress(k + 1, steps, false);
   }
   // [simulation_loop]
+  if (settings.progress) settings.progress(result.steps, steps, true);
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.frames.resize(frame_count);
+  result.frames.resize(frames_recorded);
   result.counters = stepper.counters();
   if (result.status == RunStatus::ok) result.message = "ok";
   return result;

@@ -1,18 +1,25 @@
-// Strict parsing of the shared command-line flags of docs/model.md.
+// Strict parsing of the common command-line flags of the model page.
 #include "program/command_line.hpp"
 
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "base/text.hpp"
+#include "program/interrupt.hpp"
+#include "program/limits.hpp"
 #include "program/output.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
+#include <exception>
 #include <iostream>
+#include <new>
 #include <sstream>
+#include <stdexcept>
 
 namespace cloth {
 
@@ -21,18 +28,27 @@ namespace {
 // strtod and strtoll skip leading blanks; a value with blanks around it is a quoting slip, so it is refused whole.
 bool has_blank(const std::string& text) { return text.find_first_of(" \t\n\r\f\v") != std::string::npos; }
 
+std::string quoted(const std::string& text) { return "'" + escaped(text) + "'"; }
+
 }  // namespace
 
 double parse_number(const std::string& text) {
   if (text.empty()) throw InputError("expected a number, got an empty value");
-  if (has_blank(text)) throw InputError("expected a number, got '" + text + "'");
+  if (has_blank(text)) throw InputError("expected a number, got " + quoted(text));
   char* end = nullptr;
   errno = 0;
   const double value = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || errno == ERANGE)
-    throw InputError("expected a number, got '" + text + "'");
-  if (!std::isfinite(value)) throw InputError("expected a finite number, got '" + text + "'");
-  return value;
+  if (end != text.c_str() + text.size()) throw InputError("expected a number, got " + quoted(text));
+  if (std::isnan(value) || (std::isinf(value) && errno != ERANGE))
+    throw InputError("expected a finite number, got " + quoted(text));
+  if (std::isinf(value))
+    throw InputError(quoted(text) + " is too large to represent: expected a number below 1.8e308, the largest double");
+  // strtod sets ERANGE when the number underflows, to a subnormal or to zero: refused, since it has lost digits
+  // (and a subnormal slows every operation on it a hundredfold).
+  if ((errno == ERANGE && value == 0) || (value != 0 && std::abs(value) < DBL_MIN))
+    throw InputError(quoted(text) + " is too small to represent normally (below 2.2e-308, the smallest normal "
+                     "double): expected 0 or a number of larger magnitude");
+  return value + 0.0;  // -0 is 0
 }
 
 long long parse_integer(const std::string& text) {
@@ -40,7 +56,7 @@ long long parse_integer(const std::string& text) {
   errno = 0;
   const long long value = std::strtoll(text.c_str(), &end, 10);
   if (text.empty() || has_blank(text) || end != text.c_str() + text.size() || errno == ERANGE)
-    throw InputError("expected a whole number, got '" + text + "'");
+    throw InputError("expected a whole number, got " + quoted(text));
   return value;
 }
 
@@ -60,33 +76,35 @@ double non_negative(const std::string& text) {
 
 Grid parse_grid(const std::string& text, double spacing) {
   const auto x = text.find('x');
-  if (x == std::string::npos) throw InputError("expected MxN (for example 20x20), got '" + text + "'");
+  if (x == std::string::npos) throw InputError("expected MxN (for example 20x20), got " + quoted(text));
   long long M = 0, N = 0;
   try {
     M = parse_integer(text.substr(0, x));
     N = parse_integer(text.substr(x + 1));
   } catch (const InputError&) {
-    throw InputError("expected MxN with whole numbers M, N >= 2 (for example 20x20), got '" + text + "'");
+    throw InputError("expected MxN with whole numbers M, N >= 2 (for example 20x20), got " + quoted(text));
   }
   if (M < 2 || N < 2)
-    throw InputError("expected MxN with M, N >= 2: a cloth needs 2 particles in each direction, got '" + text + "'");
-  if (M * N > max_particles || M > max_particles || N > max_particles)
-    throw InputError("'" + text + "' has more than " + std::to_string(max_particles) +
+    throw InputError("expected MxN with M, N >= 2: a cloth needs 2 particles in each direction, got " + quoted(text));
+  // M and N first, so that M * N cannot overflow.
+  if (M > max_particles || N > max_particles || M * N > max_particles)
+    throw InputError(quoted(text) + " has more than " + std::to_string(max_particles) +
                      " particles, the largest grid accepted");
   return Grid{static_cast<int>(M), static_cast<int>(N), spacing};
 }
 
-/// The shared flags of docs/model.md, in the order --help lists them: the usage text and the "missing value" message
-/// both come from this one table, so they cannot disagree.
-struct SharedFlag {
+/// The common flags of the model page, in the order --help lists them: the usage text and the "missing value"
+/// message both come from this one table, so they cannot disagree.
+struct CommonFlag {
   const char* name;
   const char* value_name;
   const char* accepted;  ///< what the value means and which values are accepted
   const char* fallback;  ///< the default, as --help prints it
 };
-constexpr SharedFlag shared_flags[] = {
+constexpr CommonFlag common_flags[] = {
     {"--grid", "MxN", "particles, M, N >= 2", "20x20"},
     {"--spacing", "d", "rest spacing [m], > 0", "0.1"},
+    {"--mass", "m", "mass of each particle [kg], > 0", "1"},
     {"--K", "k", "spring stiffness [N/m], > 0", "50"},
     {"--damping", "D", "damping coefficient, >= 0", "0"},
     {"--damping-model", "projected|report", "damping law", "projected"},
@@ -95,12 +113,12 @@ constexpr SharedFlag shared_flags[] = {
     {"--v0", "vz", "initial z velocity of free particles [m/s]", "-20"},
     {"--dt", "h", "time step [s], > 0", "0.01"},
     {"--t-end", "T", "simulated time [s], >= dt", "2"},
-    {"--frames", "n", "frames.dat holds n+1 frames, 1 <= n <= 100000", "20"},
+    {"--frames", "n", "frames.dat holds n+1 frames (at most one per step), 1 <= n <= 100000", "20"},
     {"--out", "DIR", "output folder", ""},
 };
 
-const SharedFlag* find_shared(const std::string& flag) {
-  for (const SharedFlag& f : shared_flags)
+const CommonFlag* find_common(const std::string& flag) {
+  for (const CommonFlag& f : common_flags)
     if (flag == f.name) return &f;
   return nullptr;
 }
@@ -119,17 +137,63 @@ FamilySet parse_families(const std::string& text) {
     bool known = false;
     for (SpringFamily f : all_spring_families)
       if (item == family_name(f)) set.on[static_cast<int>(f)] = known = true;
-    if (!known) throw InputError("unknown spring family '" + item + "': expected a comma list of structural,shear,flexion");
+    if (!known)
+      throw InputError("unknown spring family " + quoted(item) + ": expected a comma list of structural,shear,flexion");
     ++count;
   }
   if (count == 0) throw InputError("expected a comma list of structural,shear,flexion, got an empty value");
   return set;
 }
 
+void set_common(Options& opt, std::string& grid_text, const std::string& flag, const std::string& value) {
+  if (flag == "--grid") grid_text = value;
+  else if (flag == "--spacing") opt.scene.grid.d = positive(value);
+  else if (flag == "--mass") opt.scene.mass = positive(value);
+  else if (flag == "--K") opt.scene.stiffness = positive(value);
+  else if (flag == "--damping") opt.scene.damping = non_negative(value);
+  else if (flag == "--damping-model") {
+    if (value == "projected") opt.scene.damping_model = DampingModel::projected;
+    else if (value == "report") opt.scene.damping_model = DampingModel::report;
+    else throw InputError("unknown damping model " + quoted(value) + ": expected projected or report");
+  } else if (flag == "--springs") opt.scene.families = parse_families(value);
+  else if (flag == "--pins") {
+    if (value == "corners") opt.scene.pins = PinSet::corners;
+    else if (value == "corner") opt.scene.pins = PinSet::corner;
+    else if (value == "edge") opt.scene.pins = PinSet::edge;
+    else if (value == "none") opt.scene.pins = PinSet::none;
+    else throw InputError("unknown pin set " + quoted(value) + ": expected corners, corner, edge or none");
+  } else if (flag == "--v0") opt.scene.initial_velocity_z = parse_number(value);
+  else if (flag == "--dt") opt.run.dt = positive(value);
+  else if (flag == "--t-end") opt.run.t_end = positive(value);
+  else if (flag == "--frames") {
+    const long long n = parse_integer(value);
+    if (n < 1 || n > 100000) throw InputError("expected a whole number from 1 to 100000, got " + quoted(value));
+    opt.run.frames = static_cast<int>(n);
+  } else if (flag == "--out") {
+    if (value.empty()) throw InputError("expected a folder name, got an empty value");
+    opt.run.out_dir = value;
+  }
+}
+
 }  // namespace
 
 CommandLine::CommandLine(std::string program, std::string summary)
-    : program_(std::move(program)), summary_(std::move(summary)) {}
+    : program_(std::move(program)), summary_(std::move(summary)) {
+  for (const CommonFlag& f : common_flags) common_.emplace_back(f.name);
+}
+
+void CommandLine::use_common(std::initializer_list<const char*> flags) {
+  common_.clear();
+  for (const CommonFlag& f : common_flags)
+    if (std::any_of(flags.begin(), flags.end(), [&](const char* name) { return std::string(name) == f.name; }))
+      common_.emplace_back(f.name);
+  for (const char* name : flags)
+    if (find_common(name) == nullptr) throw std::logic_error(std::string("use_common: '") + name + "' is not a common flag");
+}
+
+bool CommandLine::uses(const std::string& flag) const {
+  return std::find(common_.begin(), common_.end(), flag) != common_.end();
+}
 
 void CommandLine::add_value(std::string flag, std::string value_name, std::string help,
                             std::function<void(const std::string&)> set) {
@@ -147,24 +211,28 @@ std::string CommandLine::usage() const {
     if (head.size() < 37) head.resize(37, ' ');
     u << head << " " << text << (fallback.empty() ? "" : " (default " + fallback + ")") << "\n";
   };
-  u << "usage: " << program_ << " [flags]\n"
-    << summary_ << "\n\nScene and run flags (the book's model page, docs/model.md):\n";
-  for (const SharedFlag& f : shared_flags)
-    line(std::string(f.name) + " " + f.value_name, f.accepted,
-         std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback));
+  u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (the book's model page, docs/model.md):\n";
+  for (const CommonFlag& f : common_flags)
+    if (uses(f.name))
+      line(std::string(f.name) + " " + f.value_name, f.accepted,
+           std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback));
   line("--help", "this text", "");
   if (!chapter_flags_.empty()) {
     u << "\nChapter flags:\n";
     for (const Flag& f : chapter_flags_) line(f.name + (f.value_name.empty() ? "" : " " + f.value_name), f.help, "");
   }
-  u << "\nExit status: 0 finished, 2 bad input (nothing written), 3 diverged (outputs up to then kept).\n";
+  u << "\nEach flag at most once. Ctrl-C (SIGINT) or SIGTERM stops a run at its next step and keeps its outputs.\n"
+       "Exit status: 0 finished, 1 internal error, 2 bad input (nothing written), 3 diverged or a step failed\n"
+       "(outputs up to then kept), 4 an output could not be written, 130/143 interrupted (outputs up to then kept).\n";
   return u.str();
 }
 
 Options CommandLine::parse(int argc, const char* const* argv) const {
   Options opt;
   opt.run.out_dir = program_;
+  opt.run.stop = &interrupt_flag();
   std::string grid_text;
+  std::vector<std::pair<std::string, std::string>> given;  // flag and value, to refuse a flag given twice
   for (int k = 1; k < argc; ++k) {
     const std::string flag = argv[k];
     if (flag == "--help" || flag == "-h") {
@@ -174,49 +242,28 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
     const Flag* chapter = nullptr;
     for (const Flag& f : chapter_flags_)
       if (f.name == flag) chapter = &f;
-    if (chapter != nullptr && chapter->set_switch) {
-      chapter->set_switch();
-      continue;
-    }
-    const SharedFlag* shared = find_shared(flag);
-    if (chapter == nullptr && shared == nullptr)
-      throw InputError("unknown flag '" + flag + "' (" + program_ + " --help lists the accepted flags)");
-    if (k + 1 >= argc || looks_like_flag(argv[k + 1])) {
+    const CommonFlag* common = uses(flag) ? find_common(flag) : nullptr;
+    if (chapter == nullptr && common == nullptr)
+      throw InputError("unknown flag " + quoted(flag) + " (" + program_ + " --help lists the accepted flags)");
+    const bool takes_value = chapter == nullptr || !chapter->set_switch;
+    if (takes_value && (k + 1 >= argc || looks_like_flag(argv[k + 1]))) {
       std::string message = flag;
       message.append(": missing value: expected ").append(flag).append(" ");
-      message.append(chapter != nullptr ? chapter->value_name : shared->value_name).append(" (");
-      message.append(chapter != nullptr ? chapter->help : shared->accepted).append(")");
+      message.append(chapter != nullptr ? chapter->value_name : common->value_name).append(" (");
+      message.append(chapter != nullptr ? chapter->help : common->accepted).append(")");
       throw InputError(message);
     }
-    const std::string value = argv[++k];
+    const std::string value = takes_value ? argv[++k] : "";
+    for (const auto& [earlier, earlier_value] : given)
+      if (earlier == flag)
+        throw InputError(flag + ": given twice" +
+                         (takes_value ? " (" + quoted(earlier_value) + ", then " + quoted(value) + ")" : "") +
+                         ": expected each flag at most once");
+    given.emplace_back(flag, value);
     try {
-      if (chapter != nullptr) chapter->set_value(value);
-      else if (flag == "--grid") grid_text = value;
-      else if (flag == "--spacing") opt.scene.grid.d = positive(value);
-      else if (flag == "--K") opt.scene.stiffness = positive(value);
-      else if (flag == "--damping") opt.scene.damping = non_negative(value);
-      else if (flag == "--damping-model") {
-        if (value == "projected") opt.scene.damping_model = DampingModel::projected;
-        else if (value == "report") opt.scene.damping_model = DampingModel::report;
-        else throw InputError("unknown damping model '" + value + "': expected projected or report");
-      } else if (flag == "--springs") opt.scene.families = parse_families(value);
-      else if (flag == "--pins") {
-        if (value == "corners") opt.scene.pins = PinSet::corners;
-        else if (value == "corner") opt.scene.pins = PinSet::corner;
-        else if (value == "edge") opt.scene.pins = PinSet::edge;
-        else if (value == "none") opt.scene.pins = PinSet::none;
-        else throw InputError("unknown pin set '" + value + "': expected corners, corner, edge or none");
-      } else if (flag == "--v0") opt.scene.initial_velocity_z = parse_number(value);
-      else if (flag == "--dt") opt.run.dt = positive(value);
-      else if (flag == "--t-end") opt.run.t_end = positive(value);
-      else if (flag == "--frames") {
-        const long long n = parse_integer(value);
-        if (n < 1 || n > 100000) throw InputError("expected a whole number from 1 to 100000, got " + value);
-        opt.run.frames = static_cast<int>(n);
-      } else if (flag == "--out") {
-        if (value.empty()) throw InputError("expected a folder name, got an empty value");
-        opt.run.out_dir = value;
-      }
+      if (chapter != nullptr && !takes_value) chapter->set_switch();
+      else if (chapter != nullptr) chapter->set_value(value);
+      else set_common(opt, grid_text, flag, value);
     } catch (const InputError& e) {
       throw InputError(flag + ": " + e.what());
     }
@@ -228,47 +275,73 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
       throw InputError(std::string("--grid: ") + e.what());
     }
   }
-  if (opt.run.t_end < opt.run.dt)
-    throw InputError("--t-end: " + format_number(opt.run.t_end) + " is smaller than --dt " + format_number(opt.run.dt) +
-                     ": expected t-end >= dt");
-  if (opt.run.t_end / opt.run.dt > 1e9)
-    throw InputError("--t-end / --dt: more than 1e9 steps asked for; expected at most 1e9");
   try {
     validate(opt.scene);
   } catch (const InputError& e) {
     throw InputError(std::string("scene: ") + e.what());
   }
+  if (uses("--dt") || uses("--t-end")) {
+    if (opt.run.t_end < opt.run.dt)
+      throw InputError("--t-end: " + format_number(opt.run.t_end) + " is smaller than --dt " +
+                       format_number(opt.run.dt) + ": expected t-end >= dt");
+    if (opt.run.t_end / opt.run.dt > 1e9)
+      throw InputError("--t-end / --dt: more than 1e9 steps asked for; expected at most 1e9");
+    require_representable(opt.scene, opt.run);
+    require_run_memory(opt.scene, opt.run, explicit_bytes_per_particle());
+  }
   return opt;
 }
 
-void prepare_output_dir(const std::string& dir, const std::string& flag) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw InputError(flag + ": cannot create folder '" + dir + "'" + (ec ? " (" + ec.message() + ")" : "") +
-                     ": expected a writable folder path");
-  const fs::path probe = fs::path(dir) / ".write_test";
-  {
-    std::ofstream test(probe);
-    if (!test) throw InputError(flag + ": folder '" + dir + "' is not writable: expected a writable folder path");
-  }
-  fs::remove(probe, ec);
-}
+namespace {
+
+std::string terminating_program = "cloth";  // the program std::terminate names (run_program sets it)
+
+}  // namespace
 
 int run_program(const std::string& program, const std::function<int()>& body) {
+  install_interrupt_handlers();
+  // An exception nobody catches (one thrown in a worker thread, or through a noexcept function) ends in
+  // std::terminate: one line and status 1 instead of an abort and a core dump.
+  terminating_program = program;
+  std::set_terminate([] {
+    std::fprintf(stderr, "%s: internal error: an exception escaped where none can be handled (std::terminate)\n",
+                 terminating_program.c_str());
+    std::_Exit(1);
+  });
+  const auto say = [&program](const std::string& line) { std::cerr << program << ": " << line << "\n"; };
+  const auto interrupted = [&](int signal) {
+    say("interrupted by " + signal_name(signal) + "; the outputs written are complete, the rest were not written");
+    return 128 + signal;
+  };
   try {
-    return body();
+    const int status = body();
+    // A run that saw the stop request returned 128 + signal and said so; a signal that came after the last step
+    // still ends the program as interrupted, its outputs whole.
+    if (const int signal = interrupt_signal(); signal != 0 && status < 128) {
+      say("interrupted by " + signal_name(signal) + " as the program finished; the outputs written are complete");
+      return 128 + signal;
+    }
+    return status;
   } catch (const HelpRequested&) {
     return 0;
   } catch (const InputError& e) {
-    std::cerr << program << ": " << e.what() << "\n";
+    say(e.what());
     return 2;
   } catch (const OutputError& e) {
-    // The folder --out names cannot take the outputs: the contract's status for an unwritable --out, although
-    // here some files may already be written.
-    std::cerr << program << ": --out: " << e.what() << "\n";
-    return 2;
+    say(e.what());
+    return 4;
+  } catch (const Interrupted& e) {
+    return interrupted(e.signal);
+  } catch (const std::bad_alloc&) {
+    say("internal error: out of memory (std::bad_alloc) although the run's size was checked against the "
+        "machine's memory; the outputs written before are complete");
+    return 1;
+  } catch (const std::exception& e) {
+    say(std::string("internal error: ") + e.what());
+    return 1;
+  } catch (...) {
+    say("internal error: an unknown exception");
+    return 1;
   }
 }
 

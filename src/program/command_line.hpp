@@ -1,40 +1,53 @@
-// The one command-line contract of docs/model.md, shared by every chapter program: the scene flags, the run flags,
-// chapter-specific flags on top, and strict validation (one clear line and exit status 2 on bad input).
+// The one command-line contract of the model page, shared by every chapter program: the common flags (scene and
+// run), chapter-specific flags on top, and strict validation (one clear line and exit status 2 on bad input).
 #pragma once
 
 #include "integrators/simulate.hpp"
 #include "model/scene.hpp"
 
 #include <functional>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
 namespace cloth {
 
-/// Everything the shared flags set.
+/// Everything the common flags set.
 struct Options {
   SceneParams scene;
-  RunSettings run;
+  RunSettings run;  ///< run.stop points at the program's interrupt flag (program/interrupt.hpp)
 };
 
-/// Parses the shared flags and a chapter's own. Usage:
+/// Parses the common flags and a chapter's own. Usage:
 ///   CommandLine cli("ch03_runge_kutta", "Runge-Kutta methods from their Butcher tableau.");
 ///   cli.add_value("--tableau", "NAME|FILE", "...", [&](const std::string& s) { tableau = s; });
 ///   Options opt = cli.parse(argc, argv);   // throws InputError, or HelpRequested after printing usage
+/// A single-run program accepts every common flag. An experiment program, which runs its own set of runs, names
+/// the common flags it uses, and accepts and lists only those:
+///   cli.use_common({"--grid", "--spacing", "--mass", "--K", "--out"});
 class CommandLine {
  public:
   CommandLine(std::string program, std::string summary);
+
+  /// Restricts the common flags to `flags` (each a common flag's name, "--out" included when wanted); the
+  /// others are refused as unknown and left out of --help. Throws std::logic_error on a name that is not one.
+  void use_common(std::initializer_list<const char*> flags);
 
   /// A chapter flag taking a value; `set` throws InputError (message without the flag name) when it is bad.
   void add_value(std::string flag, std::string value_name, std::string help, std::function<void(const std::string&)> set);
   /// A chapter flag without a value.
   void add_switch(std::string flag, std::string help, std::function<void()> set);
 
-  /// Parses argv. Throws InputError naming the flag on any bad input, HelpRequested after printing --help.
+  /// Parses argv. Throws InputError naming the flag on any bad input (a flag given twice included),
+  /// HelpRequested after printing --help. When the program uses the run flags, also checks the run they describe
+  /// before anything runs: the number of steps, the numbers of the model at t = 0 (limits.hpp), and the memory of
+  /// one recorded run by an explicit method.
   Options parse(int argc, const char* const* argv) const;
 
   [[nodiscard]] std::string usage() const;
   [[nodiscard]] const std::string& program() const { return program_; }
+  /// Whether the program accepts the common flag `flag`.
+  [[nodiscard]] bool uses(const std::string& flag) const;
 
  private:
   struct Flag {
@@ -43,22 +56,27 @@ class CommandLine {
     std::function<void()> set_switch;
   };
   std::string program_, summary_;
+  std::vector<std::string> common_;  ///< the common flags accepted, in the order --help lists them
   std::vector<Flag> chapter_flags_;
 };
 
 /// Thrown by CommandLine::parse after it printed the usage for --help.
 struct HelpRequested {};
 
-/// Strict number parsing for flags: the whole text must be a finite number. Throw InputError otherwise.
+/// Strict number parsing for flags: the whole text must be a finite number in the normal range of a double
+/// (a number too small to represent normally is refused saying so). Throw InputError otherwise.
 double parse_number(const std::string& text);
 long long parse_integer(const std::string& text);
 
-/// Creates the output folder (and its parents). Throws InputError when it cannot be created or written.
+/// Creates the output folder (and its parents) and checks that it can be written. Throws InputError when it
+/// cannot be created or written. (program/output.hpp declares the form that also checks the outputs' names.)
 void prepare_output_dir(const std::string& dir, const std::string& flag = "--out");
 
-/// Runs a chapter's main body: InputError gives one line "program: message" on stderr and exit status 2, and so
-/// does OutputError (an output file not written in full), --help gives exit status 0. The body returns the exit
-/// status (0 finished, 3 diverged).
+/// Runs a chapter's main body and turns what escapes it into the model page's exit statuses, each with one line
+/// "program: ..." on stderr: InputError 2, OutputError 4, Interrupted 128 + signal (130 SIGINT, 143 SIGTERM),
+/// std::bad_alloc and every other exception 1; --help 0. The body returns 0 (finished) or 3 (diverged or a step
+/// failed). It also installs the SIGINT and SIGTERM handlers first, turns a signal that arrived while the body
+/// finished into 128 + signal, and makes std::terminate print one line and exit with status 1 (no core dump).
 int run_program(const std::string& program, const std::function<int()>& body);
 
 }  // namespace cloth

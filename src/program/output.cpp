@@ -1,12 +1,103 @@
-// Plain-text output files, written with enough digits to reproduce every double (%.17g).
+// Checked output files: declared outputs, temporary names renamed when whole, and the model page's writers.
+// Numbers are written with std::to_chars, which prints exactly what printf's %.17g (or %.10g) would, without
+// printf's format parsing and locale: energy.dat has a line per step and frames.dat a line per particle and frame.
 #include "program/output.hpp"
 
+#include "base/input_error.hpp"
+#include "base/text.hpp"
+#include "program/command_line.hpp"
+
+#include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <utility>
 
 namespace cloth {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quoted(const std::string& path) { return "'" + escaped(path) + "'"; }
+
+// A relative path that stays inside its folder: no empty, "." or ".." part, not absolute.
+bool stays_inside(const std::string& name) {
+  if (name.empty() || name.front() == '/') return false;
+  std::size_t start = 0;
+  while (start <= name.size()) {
+    const std::size_t slash = std::min(name.find('/', start), name.size());
+    const std::string part = name.substr(start, slash - start);
+    if (part.empty() || part == "." || part == "..") return false;
+    start = slash + 1;
+  }
+  return true;
+}
+
+bool is_directory(const std::string& path) {
+  struct stat info {};
+  return ::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode);
+}
+
+bool exists(const std::string& path) {
+  struct stat info {};
+  return ::lstat(path.c_str(), &info) == 0;
+}
+
+void remove_if_regular(const std::string& path) {
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode)) ::unlink(path.c_str());
+}
+
+}  // namespace
+
+void prepare_outputs(const std::string& dir, const std::vector<std::string>& outputs,
+                     const std::vector<std::string>& others, const std::string& flag) {
+  for (const std::vector<std::string>* list : {&outputs, &others})
+    for (const std::string& name : *list)
+      if (!stays_inside(name)) throw std::logic_error("output name '" + escaped(name) + "' leaves its folder");
+  // Everything in the way is found before anything is created.
+  if (exists(dir) && !is_directory(dir))
+    throw InputError(flag + ": " + quoted(dir) + " exists and is not a folder: expected a writable folder path");
+  for (const std::string& name : outputs) {
+    for (std::size_t slash = name.find('/'); slash != std::string::npos; slash = name.find('/', slash + 1)) {
+      const std::string folder = dir + "/" + name.substr(0, slash);
+      if (exists(folder) && !is_directory(folder))
+        throw InputError(flag + ": " + quoted(folder) + " is a file where the run puts a folder of outputs: expected "
+                         "an --out without it (remove it or choose another folder)");
+    }
+    for (const std::string& file : {dir + "/" + name, dir + "/" + name + ".partial"})
+      if (is_directory(file))
+        throw InputError(flag + ": " + quoted(file) + " is a folder where the run writes a file: expected an --out "
+                         "without it (remove it or choose another folder)");
+  }
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !is_directory(dir))
+    throw InputError(flag + ": cannot create folder " + quoted(dir) + (ec ? " (" + ec.message() + ")" : "") +
+                     ": expected a writable folder path");
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    throw InputError(flag + ": folder " + quoted(dir) + " is not writable (" + std::strerror(errno) +
+                     "): expected a writable folder path");
+  for (const std::string& name : outputs)
+    if (const auto slash = name.rfind('/'); slash != std::string::npos) {
+      fs::create_directories(dir + "/" + name.substr(0, slash), ec);
+      if (ec)
+        throw InputError(flag + ": cannot create folder " + quoted(dir + "/" + name.substr(0, slash)) + " (" +
+                         ec.message() + ")");
+    }
+  for (const std::string& name : others)
+    if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) remove_if_regular(dir + "/" + name);
+  for (const std::vector<std::string>* list : {&outputs, &others})
+    for (const std::string& name : *list) remove_if_regular(dir + "/" + name + ".partial");
+}
+
+void prepare_output_dir(const std::string& dir, const std::string& flag) { prepare_outputs(dir, {}, {}, flag); }
 
 OutputFile::OutputFile(std::string path)
     : path_(std::move(path)), temporary_(path_ + ".partial"), file_(std::fopen(temporary_.c_str(), "w")) {
@@ -39,42 +130,88 @@ void OutputFile::commit() {
 }
 
 void OutputFile::fail(int error) const {
-  throw OutputError("cannot write '" + path_ + "'" + (error != 0 ? std::string(": ") + std::strerror(error) : ""));
+  throw OutputError("cannot write " + quoted(path_) + (error != 0 ? std::string(": ") + std::strerror(error) : ""));
+}
+
+namespace {
+
+/// One line of numbers built in a buffer and written with one fwrite.
+class Line {
+ public:
+  Line& number(double x, int significant_digits) {
+    end_ = std::to_chars(end_, buffer_ + capacity, x, std::chars_format::general, significant_digits).ptr;
+    return *this;
+  }
+  Line& integer(long long n) {
+    end_ = std::to_chars(end_, buffer_ + capacity, n).ptr;
+    return *this;
+  }
+  Line& space() {
+    *end_++ = ' ';
+    return *this;
+  }
+  void write(std::FILE* file) {
+    *end_++ = '\n';
+    std::fwrite(buffer_, 1, static_cast<std::size_t>(end_ - buffer_), file);
+    end_ = buffer_;
+  }
+
+ private:
+  static constexpr std::size_t capacity = 256;  // 8 numbers of at most 24 characters and their separators
+  char buffer_[capacity];
+  char* end_ = buffer_;
+};
+
+}  // namespace
+
+void write_text(const std::string& path, const std::string& text) {
+  OutputFile f(path);
+  std::fwrite(text.data(), 1, text.size(), f.get());
+  f.commit();
 }
 
 void write_final(const std::string& path, const Scene& scene, const ConstVectorRef& x, const ConstVectorRef& v) {
   OutputFile f(path);
   const Grid& g = scene.grid();
-  std::fprintf(f.get(), "# i j x y z vx vy vz\n");
+  std::fputs("# i j x y z vx vy vz\n", f.get());
+  Line line;
   for (int i = 0; i < g.M; ++i)
     for (int j = 0; j < g.N; ++j) {
       const int s = scene.slot(g.particle(i, j));
       Eigen::Vector3d p = scene.rest_positions().segment<3>(3 * s), u = Eigen::Vector3d::Zero();
       if (s < scene.free_count()) p = x.segment<3>(3 * s), u = v.segment<3>(3 * s);
-      std::fprintf(f.get(), "%d %d %.17g %.17g %.17g %.17g %.17g %.17g\n", i, j, p[0], p[1], p[2], u[0], u[1], u[2]);
+      line.integer(i).space().integer(j);
+      for (const double value : {p[0], p[1], p[2], u[0], u[1], u[2]}) line.space().number(value, 17);
+      line.write(f.get());
     }
   f.commit();
 }
 
 void write_energy(const std::string& path, const std::vector<EnergySample>& samples) {
   OutputFile f(path);
-  std::fprintf(f.get(), "# t kinetic gravity spring total\n");
-  for (const EnergySample& s : samples)
-    std::fprintf(f.get(), "%.10g %.17g %.17g %.17g %.17g\n", s.t, s.energy.kinetic, s.energy.gravity, s.energy.spring,
-                 s.energy.total());
+  std::fputs("# t kinetic gravity spring total\n", f.get());
+  Line line;
+  for (const EnergySample& s : samples) {
+    line.number(s.t, 10);
+    for (const double value : {s.energy.kinetic, s.energy.gravity, s.energy.spring, s.energy.total()})
+      line.space().number(value, 17);
+    line.write(f.get());
+  }
   f.commit();
 }
 
 void write_frames(const std::string& path, const Grid& grid, const std::vector<Frame>& frames) {
   OutputFile f(path);
+  Line line;
   for (std::size_t k = 0; k < frames.size(); ++k) {
-    if (k > 0) std::fprintf(f.get(), "\n\n");
+    if (k > 0) std::fputs("\n\n", f.get());
     std::fprintf(f.get(), "# frame %zu t = %.10g\n# i j x y z\n", k, frames[k].t);
     for (int i = 0; i < grid.M; ++i) {
-      if (i > 0) std::fprintf(f.get(), "\n");
+      if (i > 0) std::fputc('\n', f.get());
       for (int j = 0; j < grid.N; ++j) {
         const auto p = frames[k].positions.segment<3>(3 * grid.particle(i, j));
-        std::fprintf(f.get(), "%d %d %.10g %.10g %.10g\n", i, j, p[0], p[1], p[2]);
+        line.integer(i).space().integer(j).space().number(p[0], 10).space().number(p[1], 10).space().number(p[2], 10);
+        line.write(f.get());
       }
     }
   }

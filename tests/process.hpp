@@ -1,0 +1,106 @@
+// A chapter program as a child process the test can watch and signal: fork and exec (optionally through a shell,
+// for `ulimit`), stdout and stderr captured in files, and a wait with a time guard. The end-to-end tests of
+// interrupted runs and memory limits are built on it; program_runner.hpp runs the programs that need neither.
+#pragma once
+
+#include "program_runner.hpp"
+
+#include <chrono>
+#include <csignal>
+#include <fcntl.h>
+#include <string>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+namespace cloth_test {
+
+/// A started program: its process id and the files its stdout and stderr go to.
+struct Child {
+  pid_t pid = -1;
+  fs::path out, err;
+};
+
+/// Starts build/bin/<program> with `args` in folder `cwd`. With a `shell_prefix` ("ulimit -v 400000;") the program
+/// is run by /bin/sh after the prefix, through exec, so that the shell's process is the program's.
+inline Child spawn_chapter(const std::string& program, const std::vector<std::string>& args, const fs::path& cwd,
+                           const std::string& shell_prefix = "") {
+  Child child;
+  child.out = cwd.parent_path() / (cwd.filename().string() + ".stdout");
+  child.err = cwd.parent_path() / (cwd.filename().string() + ".stderr");
+  std::vector<std::string> words;
+  if (shell_prefix.empty()) {
+    words.push_back(program_path(program).string());
+    words.insert(words.end(), args.begin(), args.end());
+  } else {
+    // Appended piece by piece: GCC 12 gives a false -Wrestrict on "literal" + std::string&& (GCC bug 105329).
+    std::string command = shell_prefix;
+    command.append(" exec ").append(shell_quote(program_path(program).string()));
+    for (const std::string& a : args) command.append(" ").append(shell_quote(a));
+    words = {"/bin/sh", "-c", command};
+  }
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  child.pid = ::fork();
+  if (child.pid == 0) {  // the child: only async-signal-safe calls until exec
+    const int out = ::open(child.out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err = ::open(child.err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (out < 0 || err < 0 || ::chdir(cwd.c_str()) != 0) ::_exit(125);
+    ::dup2(out, STDOUT_FILENO);
+    ::dup2(err, STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    ::_exit(126);
+  }
+  return child;
+}
+
+/// Waits for the child to end: its exit status, 128 + n when signal n ended it (as a shell reports it), or 124
+/// when it was still running after `time_guard_seconds` (it is then killed: a hang fails the test, it does not
+/// hang the suite).
+inline int wait_for(const Child& child, double time_guard_seconds = 60) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(time_guard_seconds);
+  for (;;) {
+    int raw = 0;
+    const pid_t done = ::waitpid(child.pid, &raw, WNOHANG);
+    if (done == child.pid) return WIFEXITED(raw) ? WEXITSTATUS(raw) : WIFSIGNALED(raw) ? 128 + WTERMSIG(raw) : -1;
+    if (done < 0) return -1;
+    if (std::chrono::steady_clock::now() > deadline) {
+      ::kill(child.pid, SIGKILL);
+      ::waitpid(child.pid, &raw, 0);
+      return 124;
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+}
+
+/// Polls every half millisecond until `path` exists; false when the child ended first or `seconds` passed.
+inline bool wait_until_exists(const Child& child, const fs::path& path, double seconds = 60) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (fs::exists(path)) return true;
+    siginfo_t info{};
+    if (::waitid(P_PID, static_cast<id_t>(child.pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid != 0)
+      return fs::exists(path);
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  return false;
+}
+
+/// Runs a program to its end as a child (see spawn_chapter) and collects status, stdout and stderr.
+inline ProgramRun run_child(const std::string& program, const std::vector<std::string>& args, const fs::path& cwd,
+                            const std::string& shell_prefix = "", double time_guard_seconds = 60) {
+  const Child child = spawn_chapter(program, args, cwd, shell_prefix);
+  ProgramRun run;
+  run.status = wait_for(child, time_guard_seconds);
+  run.out = read_text(child.out);
+  run.err = read_text(child.err);
+  std::error_code ec;
+  fs::remove(child.out, ec);
+  fs::remove(child.err, ec);
+  return run;
+}
+
+}  // namespace cloth_test

@@ -1,0 +1,346 @@
+// Hostile input, end to end: what a careless or malicious user can hand the chapter programs (a folder where an
+// output file goes, a FIFO or a device as a tableau file, numbers that overflow the model's doubles or the
+// machine's memory, a flag given twice) must be refused before anything runs: exit status 2, exactly one line on
+// stderr of a known shape, and the working folder left exactly as it was. The table below is the contract's
+// list of such inputs; each row is one program run.
+#include "process.hpp"
+#include "program_runner.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cstring>
+#include <functional>
+#include <set>
+#include <string>
+#include <sys/stat.h>
+#include <vector>
+
+using namespace cloth_test;
+
+namespace {
+
+/// '*' in `pattern` matches any run of characters, every other character itself.
+bool matches(const std::string& text, const std::string& pattern) {
+  std::size_t t = 0, p = 0, star = std::string::npos, resume = 0;
+  while (t < text.size()) {
+    if (p < pattern.size() && pattern[p] == '*') {
+      star = p++;
+      resume = t;
+    } else if (p < pattern.size() && pattern[p] == text[t]) {
+      ++p;
+      ++t;
+    } else if (star != std::string::npos) {
+      p = star + 1;
+      t = ++resume;
+    } else {
+      return false;
+    }
+  }
+  while (p < pattern.size() && pattern[p] == '*') ++p;
+  return p == pattern.size();
+}
+
+/// Every entry under `dir` as a path relative to it; folders end in '/'.
+std::set<std::string> tree(const fs::path& dir) {
+  std::set<std::string> entries;
+  if (!fs::exists(dir)) return entries;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    entries.insert(fs::relative(e.path(), dir).string() + (e.is_directory() ? "/" : ""));
+  return entries;
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+  return text;
+}
+
+using Setup = std::function<void(const fs::path& cwd)>;
+
+/// One hostile command line, refused. "@S" in `args` and `line` stands for the scratch folder (which holds the
+/// input files below); `line` is the whole stderr after "<program>: ", '*' matching machine-dependent figures.
+struct Refused {
+  std::string program;
+  std::vector<std::string> args;  ///< "--out out" is added unless the case gives its own --out
+  std::string line;
+  Setup setup = {};  ///< what the working folder holds before the run (a folder in the way, ...)
+};
+
+const char* const rk4_rows = "0 0 0 0 0\n1/2 1/2 0 0 0\n1/2 0 1/2 0 0\n1 0 0 1 0\nb 1/6 1/3 1/3 1/6\n";
+
+// The input files the table's tableau cases name, in the scratch folder, outside the program's working folder.
+void write_inputs(const fs::path& dir) {
+  const auto write = [&](const char* name, const std::string& text) { std::ofstream(dir / name, std::ios::binary) << text; };
+  write("binary.tableau", std::string("order 4\n\x01\xfe\n", 11));
+  write("nul.tableau", std::string("order 4\n0 0\0 1\n", 15));
+  write("utf8.tableau", "# R\xc3\xa9sum\xc3\xa9\norder 4\n" + std::string(rk4_rows));
+  write("dup_name.tableau", "name a\nname b\norder 4\n" + std::string(rk4_rows));
+  write("dup_order.tableau", "order 4\n" + std::string(rk4_rows) + "order 4\n");
+  write("low_order.tableau", "order 2\n" + std::string(rk4_rows));
+  write("high_order.tableau", "order 3\n0 0 0\n1 1 0\nb 1/2 1/2\n");
+  write("huge.tableau", "order 4\n" + std::string(rk4_rows) + std::string(70000 - 8 - std::strlen(rk4_rows), '#'));
+  ::mkfifo((dir / "fifo").c_str(), 0644);
+  fs::create_directory(dir / "folder");
+  fs::create_directory_symlink(dir / "folder", dir / "link_to_folder");
+}
+
+/// Runs every case in a fresh scratch folder: status 2, stdout empty, stderr exactly the case's line, and the
+/// working folder exactly as the case's setup left it (nothing created, nothing removed).
+void expect_refused(const std::vector<Refused>& cases) {
+  for (const Refused& c : cases) {
+    const ProgramFolder folder;
+    write_inputs(folder.scratch());
+    const std::string scratch = folder.scratch().string();
+    std::vector<std::string> args;
+    bool own_out = false;
+    for (const std::string& a : c.args) {
+      args.push_back(replaced(a, "@S", scratch));
+      own_out = own_out || a == "--out";
+    }
+    if (!own_out) args.insert(args.end(), {"--out", "out"});
+    if (c.setup) c.setup(folder.cwd());
+    const std::set<std::string> before = tree(folder.cwd());
+    // 20 s guards against a hang (a FIFO read, an endless loop): a refusal takes milliseconds.
+    const ProgramRun run = run_child(c.program, args, folder.cwd(), "", 20);
+    const std::string expected = c.program + ": " + replaced(c.line, "@S", scratch) + "\n";
+    CAPTURE(c.program);
+    std::string command;
+    for (const std::string& a : args) command += " " + a;
+    CAPTURE(command);
+    CAPTURE(run.err);
+    CAPTURE(expected);
+    CHECK(run.status == 2);
+    CHECK(run.out.empty());
+    CHECK(matches(run.err, expected));
+    CHECK(tree(folder.cwd()) == before);
+  }
+}
+
+// The files each program writes into --out, by mode, as the model page and the chapters list them: the
+// independent list the folder-in-the-way cases are made from.
+const std::vector<std::string> run_files = {"final.dat", "energy.dat", "frames.dat", "run.txt"};
+
+std::vector<std::string> in_folders(const std::vector<std::string>& folders, const std::vector<std::string>& files) {
+  std::vector<std::string> names;
+  for (const std::string& folder : folders)
+    for (const std::string& file : files) names.push_back(folder + "/" + file);
+  return names;
+}
+
+std::vector<std::string> joined(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+const std::vector<std::string> report_cases = {"K50_D0", "K200_D0", "K200_D20"};
+
+std::vector<std::string> prefixed(const std::string& prefix) {
+  std::vector<std::string> folders;
+  for (const std::string& c : report_cases) folders.push_back(prefix + c);
+  return folders;
+}
+
+struct ProgramOutputs {
+  std::string program;
+  std::vector<std::string> args;
+  std::vector<std::string> outputs;
+};
+
+std::vector<ProgramOutputs> every_output() {
+  const std::vector<std::string> ch03_files = joined(run_files, {"lowest_point.dat"});
+  return {
+      {"ch01_springs", {}, {"force_extension.dat", "stretch_energy.dat", "springs.dat", "gradient_check.txt"}},
+      {"ch02_explicit_euler", {}, run_files},
+      {"ch02_explicit_euler", {"--single-spring"}, {"single_spring.dat"}},
+      {"ch02_explicit_euler",
+       {"--report-runs"},
+       joined({"single_spring.dat"}, in_folders(joined(prefixed("explicit_"), prefixed("symplectic_")), run_files))},
+      {"ch03_runge_kutta", {}, ch03_files},
+      {"ch03_runge_kutta", {"--report-runs"}, joined({"order.dat"}, in_folders(prefixed("rk4_"), ch03_files))},
+      {"ch04_implicit_euler", {}, run_files},
+      {"ch04_implicit_euler",
+       {"--report-runs"},
+       joined({"comparison.dat", "residuals.dat", "iterations_symmetric.dat", "iterations_definite.dat"},
+              in_folders(joined(prefixed("full_"), prefixed("one_")), run_files))},
+  };
+}
+
+Setup folder_at(const std::string& path) {
+  return [path](const fs::path& cwd) { fs::create_directories(cwd / path); };
+}
+
+Setup file_at(const std::string& path) {
+  return [path](const fs::path& cwd) {
+    fs::create_directories((cwd / path).parent_path());
+    std::ofstream(cwd / path) << "a reader's file\n";
+  };
+}
+
+const std::string folder_in_the_way =
+    "' is a folder where the run writes a file: expected an --out without it (remove it or choose another folder)";
+const std::string file_in_the_way =
+    "' is a file where the run puts a folder of outputs: expected an --out without it (remove it or choose another "
+    "folder)";
+
+const std::string too_small = "' is too small to represent normally (below 2.2e-308, the smallest normal double): "
+                              "expected 0 or a number of larger magnitude";
+const std::string given_twice = "expected each flag at most once";
+
+}  // namespace
+
+TEST_CASE("matches: '*' spans any text, the rest matches exactly") {
+  CHECK(matches("ch02: --K: 1 GB", "ch02: --K: * GB"));
+  CHECK(matches("abc", "abc"));
+  CHECK(matches("abc", "*"));
+  CHECK(!matches("abcd", "abc"));
+  CHECK(!matches("ab", "abc"));
+  CHECK(matches("a x b y c", "a*b*c"));
+  CHECK(!matches("a x b y", "a*b*c"));
+}
+
+#if defined(CLOTH_HAVE_CH01_SPRINGS) && defined(CLOTH_HAVE_CH02_EXPLICIT_EULER) && \
+    defined(CLOTH_HAVE_CH03_RUNGE_KUTTA) && defined(CLOTH_HAVE_CH04_IMPLICIT_EULER)
+
+TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad input: status 2, nothing written") {
+  std::vector<Refused> cases;
+  for (const ProgramOutputs& p : every_output()) {
+    for (const std::string& name : p.outputs)
+      cases.push_back({p.program, p.args, "--out: 'out/" + name + folder_in_the_way, folder_at("out/" + name)});
+    // The temporary name an output is written under is in the way just the same.
+    cases.push_back({p.program, p.args, "--out: 'out/" + p.outputs.back() + ".partial" + folder_in_the_way,
+                     folder_at("out/" + p.outputs.back() + ".partial")});
+    // A file where a report run's subfolder goes.
+    if (const auto slash = p.outputs.back().find('/'); slash != std::string::npos) {
+      const std::string sub = p.outputs.back().substr(0, slash);
+      cases.push_back({p.program, p.args, "--out: 'out/" + sub + file_in_the_way, file_at("out/" + sub)});
+    }
+  }
+  CHECK(cases.size() == 98);
+  expect_refused(cases);
+}
+
+TEST_CASE("hostile flags: given twice, too small to represent, beyond what the model's doubles or memory hold") {
+  expect_refused({
+      // A flag given twice, common or the chapter's, with or without a value.
+      {"ch02_explicit_euler", {"--K", "5", "--K", "6"}, "--K: given twice ('5', then '6'): " + given_twice},
+      {"ch01_springs", {"--grid", "4x4", "--grid", "5x5"}, "--grid: given twice ('4x4', then '5x5'): " + given_twice},
+      {"ch03_runge_kutta", {"--tableau", "rk4", "--tableau", "heun"},
+       "--tableau: given twice ('rk4', then 'heun'): " + given_twice},
+      {"ch04_implicit_euler", {"--report-runs", "--report-runs"}, "--report-runs: given twice: " + given_twice},
+      {"ch02_explicit_euler", {"--out", "a", "--out", "b"}, "--out: given twice ('a', then 'b'): " + given_twice},
+      {"ch04_implicit_euler", {"--mass", "2", "--mass", "2"}, "--mass: given twice ('2', then '2'): " + given_twice},
+      // Numbers too small to represent normally: subnormal, or rounded to zero.
+      {"ch02_explicit_euler", {"--K", "1e-310"}, "--K: '1e-310" + too_small},
+      {"ch03_runge_kutta", {"--v0", "-4e-320"}, "--v0: '-4e-320" + too_small},
+      {"ch04_implicit_euler", {"--damping", "1e-320"}, "--damping: '1e-320" + too_small},
+      {"ch01_springs", {"--mass", "1e-310"}, "--mass: '1e-310" + too_small},
+      {"ch02_explicit_euler", {"--dt", "1e-400"}, "--dt: '1e-400" + too_small},
+      {"ch02_explicit_euler", {"--spacing", "0x1p-1074"}, "--spacing: '0x1p-1074" + too_small},
+      {"ch02_explicit_euler", {"--v0", "1e999"},
+       "--v0: '1e999' is too large to represent: expected a number below 1.8e308, the largest double"},
+      // Sizes whose squares or energies at t = 0 leave the doubles.
+      {"ch02_explicit_euler", {"--spacing", "2.5e-308"},
+       "--spacing: 2.5e-308 is too small for the model's arithmetic: squared distances (d^2) would fall below the "
+       "smallest normal double, 2.2e-308; expected a spacing >= 1.5e-154 m"},
+      {"ch02_explicit_euler", {"--v0", "1e200"},
+       "--v0: 1e+200 m/s carries the cloth 2e+200 m in --t-end, too far to square in a double; expected |v0| T below "
+       "1e149 m"},
+      {"ch03_runge_kutta", {"--spacing", "1e200"},
+       "--spacing: 1e+200 makes the cloth 2.68701e+201 m wide, too large to square in a double; expected a cloth "
+       "narrower than 1e149 m"},
+      {"ch04_implicit_euler", {"--v0", "-1e149"},
+       "--v0: -1e+149 m/s carries the cloth 2e+149 m in --t-end, too far to square in a double; expected |v0| T "
+       "below 1e149 m"},
+      {"ch02_explicit_euler", {"--t-end", "1e80", "--dt", "1e72"},
+       "--t-end: 1e+80 s lets the cloth fall 4.905e+160 m, too far to square in a double; expected g T^2 / 2 below "
+       "1e149 m"},
+      {"ch02_explicit_euler", {"--mass", "1e300"},
+       "--mass: 1e+300 kg gives a kinetic energy of 8e+304 J at t = 0, beyond what the model's doubles hold "
+       "(1e300); expected a smaller mass"},
+      {"ch03_runge_kutta", {"--v0", "1e150", "--t-end", "1e-5", "--dt", "1e-5"},
+       "--v0: 1e+150 m/s gives a kinetic energy of 2e+302 J at t = 0, beyond what the model's doubles hold (1e300); "
+       "expected a smaller |v0|"},
+      {"ch02_explicit_euler", {"--K", "1e295"},
+       "--K: 1e+295 N/m gives spring energies 1/2 K l^2 beyond what the model's doubles hold (1e300) at the lengths "
+       "the run may reach; expected a smaller K"},
+      {"ch04_implicit_euler", {"--mass", "1e-300"},
+       "--mass: 1e-300 kg with K = 50 N/m gives omega^2 = K / m = 5e+301 s^-2, beyond what the model's doubles hold "
+       "(1e300); expected a larger mass or a smaller K"},
+      // Sizes beyond any machine's memory, refused naming the flag whose share is largest.
+      {"ch02_explicit_euler", {"--grid", "2000x2000", "--frames", "100000", "--dt", "1e-6", "--t-end", "0.1"},
+       "--frames: a run recording 100001 frames of a 2000x2000 grid needs about 9.6* TB, more than the * a run may "
+       "use (*): expected fewer frames or a smaller grid"},
+      {"ch04_implicit_euler", {"--grid", "2000x2000"},
+       "--grid: a run on a 2000x2000 grid needs about * GB, more than the * a run may use (*): expected a smaller "
+       "grid"},
+      {"ch03_runge_kutta", {"--report-runs", "--grid", "1000x1000", "--t-end", "100", "--dt", "1e-4"},
+       "--t-end: a run recording 100001 frames of a 1000x1000 grid needs about 2.4* TB, more than the * a run may use "
+       "(*): expected fewer frames or a smaller grid"},
+      {"ch02_explicit_euler", {"--grid", "3000000000x3000000000"},
+       "--grid: '3000000000x3000000000' has more than 4000000 particles, the largest grid accepted"},
+      {"ch01_springs", {"--grid", "300x300"},
+       "--grid: the gradient check takes time growing as (M N)^2; expected at most 40000 particles (200x200)"},
+      // --mass, the new common flag.
+      {"ch02_explicit_euler", {"--mass", "0"}, "--mass: expected a number > 0, got 0"},
+      {"ch03_runge_kutta", {"--mass", "-1"}, "--mass: expected a number > 0, got -1"},
+      {"ch04_implicit_euler", {"--mass", "heavy"}, "--mass: expected a number, got 'heavy'"},
+      {"ch01_springs", {"--mass", "inf"}, "--mass: expected a finite number, got 'inf'"},
+      {"ch02_explicit_euler", {"--mass"}, "--mass: missing value: expected --mass m (mass of each particle [kg], > 0)"},
+      // An experiment program takes only the common flags it uses.
+      {"ch01_springs", {"--dt", "0.01"}, "unknown flag '--dt' (ch01_springs --help lists the accepted flags)"},
+      {"ch01_springs", {"--v0", "-5"}, "unknown flag '--v0' (ch01_springs --help lists the accepted flags)"},
+      // Control bytes in a value are shown escaped, never echoed raw to the terminal.
+      {"ch02_explicit_euler", {"--K", "\x1b[31m"}, "--K: expected a number, got '\\x1b[31m'"},
+      {"ch02_explicit_euler", {"--pins", "a\tb"}, "--pins: unknown pin set 'a\\tb': expected corners, corner, edge or none"},
+      // --report-runs checks the values its runs use, not only the command line's.
+      {"ch04_implicit_euler", {"--report-runs", "--linear-solver", "ldlt", "--jacobian", "exact"},
+       "--linear-solver ldlt needs a symmetric matrix, and the exact Jacobian of a damped cloth is not: use "
+       "--linear-solver ldu or lu, or --jacobian symmetric or definite (--report-runs runs K = 200, D = 20)"},
+      {"ch04_implicit_euler", {"--report-runs", "--linear-solver", "cg"},
+       "--linear-solver cg: --report-runs compares the symmetric and the definite Newton matrix, and cg takes only the "
+       "definite one: expected ldlt, ldu or lu"},
+      {"ch04_implicit_euler", {"--report-runs", "--linear-solver", "cg", "--jacobian", "exact"},
+       "--linear-solver cg needs a symmetric positive definite matrix: use --jacobian definite with it, or "
+       "--linear-solver ldlt, ldu or lu (--report-runs runs K = 50, D = 0)"},
+      {"ch02_explicit_euler", {"--report-runs", "--v0", "1e149"},
+       "--v0: 1e+149 m/s carries the cloth 2e+149 m in --t-end, too far to square in a double; expected |v0| T below "
+       "1e149 m"},
+  });
+}
+
+TEST_CASE("hostile tableau files: not regular, not text, too large, keys twice, a wrong order claim") {
+  const std::string regular = ": expected a regular text file";
+  expect_refused({
+      {"ch03_runge_kutta", {"--tableau", "@S/folder"}, "--tableau: '@S/folder' is a folder" + regular},
+      {"ch03_runge_kutta", {"--tableau", "@S/link_to_folder"}, "--tableau: '@S/link_to_folder' is a folder" + regular},
+      {"ch03_runge_kutta", {"--tableau", "@S/fifo"}, "--tableau: '@S/fifo' is a FIFO (named pipe)" + regular},
+      {"ch03_runge_kutta", {"--tableau", "/dev/zero"}, "--tableau: '/dev/zero' is a character device" + regular},
+      {"ch03_runge_kutta", {"--tableau", "/dev/null"}, "--tableau: '/dev/null' is a character device" + regular},
+      {"ch03_runge_kutta", {"--tableau", "@S/binary.tableau"},
+       "--tableau: @S/binary.tableau:2:1: byte '\\x01' is not printable text: expected a plain ASCII text file"},
+      {"ch03_runge_kutta", {"--tableau", "@S/nul.tableau"},
+       "--tableau: @S/nul.tableau:2:4: byte '\\x00' is not printable text: expected a plain ASCII text file"},
+      {"ch03_runge_kutta", {"--tableau", "@S/utf8.tableau"},
+       "--tableau: @S/utf8.tableau:1:4: byte '\\xc3' is not printable text: expected a plain ASCII text file"},
+      {"ch03_runge_kutta", {"--tableau", "@S/huge.tableau"},
+       "--tableau: '@S/huge.tableau' has 70000 bytes: expected a text file of at most 65536 bytes"},
+      {"ch03_runge_kutta", {"--tableau", "@S/dup_name.tableau"},
+       "--tableau: @S/dup_name.tableau:2: 'name' given twice (first on line 1): expected one"},
+      {"ch03_runge_kutta", {"--tableau", "@S/dup_order.tableau"},
+       "--tableau: @S/dup_order.tableau:7: 'order' given twice (first on line 1): expected one"},
+      {"ch03_runge_kutta", {"--tableau", "@S/low_order.tableau"},
+       "--tableau: @S/low_order.tableau: tableau '@S/low_order.tableau': claims order 2 but satisfies the order "
+       "conditions through order 4: expected 'order 4'"},
+      {"ch03_runge_kutta", {"--tableau", "@S/high_order.tableau"},
+       "--tableau: @S/high_order.tableau: tableau '@S/high_order.tableau': claims order 3 but the order-3 condition "
+       "sum b_i c_i^2 = 1/3 and sum b_i a_ij c_j = 1/6 fails by 0.16666666666666669"},
+      {"ch03_runge_kutta", {"--tableau", "@S/missing.tableau"},
+       "--tableau: '@S/missing.tableau' is neither a built-in tableau (euler, heun, midpoint, kutta3, rk4, rule38) nor "
+       "a readable file"},
+      {"ch03_runge_kutta", {"--tableau", "\x1b]0;owned\x07"},
+       "--tableau: '\\x1b]0;owned\\x07' is neither a built-in tableau (euler, heun, midpoint, kutta3, rk4, rule38) nor "
+       "a readable file"},
+  });
+}
+
+#endif
