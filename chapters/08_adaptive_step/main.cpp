@@ -61,7 +61,9 @@ int run_once(const Options& opt, const ButcherTableau& tableau, const std::strin
                  {"largest_step", num(result.largest_step)},
                  {"refused_for_turn", std::to_string(result.refused_for_turn)}};
   write_steps(opt.run.out_dir + "/steps.dat", result.attempts);
-  return finish_run(result, rk, opt.run, program, extra);
+  // Not finish_run: its note on frames counts fixed steps of --dt, and adaptive frames are interpolated, all of them.
+  write_outputs(result, rk, opt.run, extra);
+  return report(result, rk, program);
 }
 
 }  // namespace

@@ -83,9 +83,11 @@ void check_order(const ButcherTableau& t, const std::string& who, const Eigen::V
       const RootedTree& tree = rooted_trees()[static_cast<std::size_t>(worst)];
       std::string condition = tree.condition;
       if (row != "b") condition.replace(condition.find("b_i"), 3, "bhat_i");
-      throw InputError(who + "claims order " + std::to_string(order) + (row == "b" ? "" : " for " + row) +
-                       " but the order-" + std::to_string(p) + " condition " + condition + " (tree " + tree.bracket +
-                       ") fails by " + fmt(defect));
+      std::string message = who + "claims order " + std::to_string(order);
+      if (row != "b") message += " for " + row;
+      message += " but the order-" + std::to_string(p) + " condition " + condition;
+      message += " (tree " + tree.bracket + ") fails by " + fmt(defect);
+      throw InputError(message);
     }
   }
   // A claim below what the conditions give would label the method's results (the observed order of Chapter 3,
@@ -94,9 +96,11 @@ void check_order(const ButcherTableau& t, const std::string& who, const Eigen::V
   while (satisfied < max_tree_order && order_condition_defect(t.A, w, satisfied + 1) <= tolerance) ++satisfied;
   if (satisfied > order) {
     const std::string key = row == "b" ? "order" : "embedded_order";
-    throw InputError(who + "claims order " + std::to_string(order) + (row == "b" ? "" : " for " + row) +
-                     " but satisfies the order conditions through order " + std::to_string(satisfied) +
-                     ": expected '" + key + " " + std::to_string(satisfied) + "'");
+    std::string message = who + "claims order " + std::to_string(order);
+    if (row != "b") message += " for " + row;
+    message += " but satisfies the order conditions through order " + std::to_string(satisfied);
+    message += ": expected '" + key + " " + std::to_string(satisfied) + "'";
+    throw InputError(message);
   }
 }
 

@@ -123,7 +123,7 @@ double order_condition_defect(const Eigen::MatrixXd& A, const Eigen::VectorXd& w
     const double residual = std::abs(w.dot(phi[k]) - 1.0 / static_cast<double>(trees[k].density));
     if (arg < 0 || residual > defect) defect = residual, arg = static_cast<int>(k);
   }
-  if (worst) *worst = arg;
+  if (worst != nullptr) *worst = arg;
   return defect;
 }
 
