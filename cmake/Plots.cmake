@@ -10,27 +10,37 @@ set(CLOTH_PLOT_DIR ${CMAKE_BINARY_DIR}/plots CACHE INTERNAL "Where the figures g
 set(CLOTH_PLOT_DATA_DIR ${CMAKE_BINARY_DIR}/plots/data CACHE INTERNAL "Where the figures' data go")
 add_custom_target(plots)
 
-# cloth_add_plot(NAME run_name TARGET exe SCRIPT file.gp [ARGS program flags...] [FIGURES a.png ...])
+# cloth_add_plot(NAME run_name TARGET exe SCRIPT file.gp [ARGS program flags...] [FIGURES a.png ...]
+#                [FRAGMENTS table.md ...])
 # Runs `exe ARGS --out build/plots/data/run_name`, then
 # `gnuplot -e "data='<that folder>'; plots='build/plots'" file.gp`.
+# FRAGMENTS are the files of that folder the chapter's page includes (`\include{doc} run_name/table.md`, see
+# src/program/fragment.hpp): the run fails when the program did not write one of them.
 function(cloth_add_plot)
-  cmake_parse_arguments(P "" "NAME;TARGET;SCRIPT" "ARGS;FIGURES" ${ARGN})
+  cmake_parse_arguments(P "" "NAME;TARGET;SCRIPT" "ARGS;FIGURES;FRAGMENTS" ${ARGN})
   set(data ${CLOTH_PLOT_DATA_DIR}/${P_NAME})
   set(stamp ${data}.stamp)
   set(figures "")
   foreach(f IN LISTS P_FIGURES)
     list(APPEND figures ${CLOTH_PLOT_DIR}/${f})
   endforeach()
+  set(fragments "")
+  foreach(f IN LISTS P_FRAGMENTS)
+    list(APPEND fragments ${data}/${f})
+  endforeach()
+  list(JOIN fragments "|" fragment_list)  # one command-line argument; RequireFragments.cmake splits it
   get_filename_component(script ${P_SCRIPT} ABSOLUTE)
   add_custom_command(
     OUTPUT ${stamp}
-    BYPRODUCTS ${figures}
+    BYPRODUCTS ${figures} ${fragments}
     COMMAND ${CMAKE_COMMAND} -E rm -rf ${data}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${CLOTH_PLOT_DIR}
     COMMAND $<TARGET_FILE:${P_TARGET}> ${P_ARGS} --out ${data}
+    COMMAND ${CMAKE_COMMAND} -DPROGRAM=${P_TARGET} "-DFILES=${fragment_list}"
+            -P ${PROJECT_SOURCE_DIR}/cmake/RequireFragments.cmake
     COMMAND ${GNUPLOT_EXECUTABLE} -e "data='${data}'; plots='${CLOTH_PLOT_DIR}'" ${script}
     COMMAND ${CMAKE_COMMAND} -E touch ${stamp}
-    DEPENDS ${P_TARGET} ${script}
+    DEPENDS ${P_TARGET} ${script} ${PROJECT_SOURCE_DIR}/cmake/RequireFragments.cmake
     WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}
     COMMENT "plots: ${P_NAME}"
     VERBATIM)

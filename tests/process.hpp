@@ -24,12 +24,13 @@ struct Child {
 };
 
 /// Starts build/bin/<program> with `args` in folder `cwd`. With a `shell_prefix` ("ulimit -v 400000;") the program
-/// is run by /bin/sh after the prefix, through exec, so that the shell's process is the program's.
+/// is run by /bin/sh after the prefix, through exec, so that the shell's process is the program's. Its stderr
+/// goes to a file beside `cwd`, or to `stderr_to` when given (a terminal, to see what a reader sees).
 inline Child spawn_chapter(const std::string& program, const std::vector<std::string>& args, const fs::path& cwd,
-                           const std::string& shell_prefix = "") {
+                           const std::string& shell_prefix = "", const fs::path& stderr_to = {}) {
   Child child;
   child.out = cwd.parent_path() / (cwd.filename().string() + ".stdout");
-  child.err = cwd.parent_path() / (cwd.filename().string() + ".stderr");
+  child.err = stderr_to.empty() ? cwd.parent_path() / (cwd.filename().string() + ".stderr") : stderr_to;
   std::vector<std::string> words;
   if (shell_prefix.empty()) {
     words.push_back(program_path(program).string());

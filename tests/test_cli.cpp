@@ -4,7 +4,7 @@
 #include "program/command_line.hpp"
 #include "base/input_error.hpp"
 #include "integrators/butcher_tableau.hpp"
-#include "integrators/methods.hpp"
+#include "integrators/method_registry.hpp"
 #include "program_runner.hpp"
 
 #include <doctest/doctest.h>
@@ -33,6 +33,9 @@ void write_tableau_files(const fs::path& dir) {
   write("word.tableau", "order 2\n0 0 0\n1 one 0\nb 1/2 1/2\n");
   write("implicit.tableau", "order 1\n1 1\nb 1\n");
   write("inconsistent.tableau", "order 2\n0 0 0\n0.5 1 0\nb 1/2 1/2\n");
+  // The two-stage Gauss method (order 4), fully implicit: Chapter 9's engine refuses it.
+  write("gauss2.tableau", "order 4\n0.21132486540518713 0.25 -0.038675134594812866\n"
+                          "0.78867513459481287 0.53867513459481287 0.25\nb 1/2 1/2\n");
 }
 
 std::string joined(const std::vector<std::string>& args) {
@@ -226,6 +229,8 @@ TEST_CASE("ch01_springs: good input does write its folder (so the checks above c
 #ifdef CLOTH_HAVE_CH02_EXPLICIT_EULER
 TEST_CASE("ch02_explicit_euler: bad input gives status 2, one line naming the flag, nothing written") {
   expect_refused("ch02_explicit_euler", shared_flag_cases());
+  expect_refused("ch02_explicit_euler",
+                 {{{"--method", "rk4"}, {"--method", "'rk4'", "explicit_euler", "symplectic_euler"}}});
 }
 #endif
 
@@ -288,6 +293,43 @@ TEST_CASE("ch04_implicit_euler: bad Newton and linear-solver settings are refuse
                      {{"--jacobian", "numeric"}, {"--jacobian", "'numeric'", "exact", "symmetric", "definite"}},
                      {{"--linear-solver", "cg", "--jacobian", "symmetric"}, {"--linear-solver cg", "definite"}},
                      {{"--damping", "1", "--linear-solver", "ldlt", "--jacobian", "exact"}, {"--linear-solver ldlt", "lu"}},
+                     {{"--newton", "two"}, {"--newton", "'two'", "full", "modified", "one"}},
                  });
+}
+#endif
+
+#ifdef CLOTH_HAVE_CH09_IMPLICIT_RUNGE_KUTTA
+TEST_CASE("ch09_implicit_runge_kutta: bad input gives status 2, one line naming the flag, nothing written") {
+  expect_refused("ch09_implicit_runge_kutta", shared_flag_cases());
+}
+
+TEST_CASE("ch09_implicit_runge_kutta: fully implicit tableaus, --tol without a pair, bad Newton settings refused") {
+  expect_refused("ch09_implicit_runge_kutta",
+                 {
+                     {{"--tableau", "gauss2"}, {"--tableau", "'gauss2'", "sdirk2", "trbdf2", "bdf2"}},
+                     {{"--tableau", "@S/gauss2.tableau"}, {"--tableau", "gauss2.tableau", "a_12", "fully implicit"}},
+                     {{"--tableau", "@S/ragged.tableau"}, {"--tableau", "ragged.tableau:3"}},
+                     {{"--tableau", "sdirk2", "--tol", "1e-3"}, {"--tol", "embedded", "trbdf2"}},
+                     {{"--tableau", "bdf2", "--tol", "1e-3"}, {"--tol", "bdf2"}},
+                     {{"--tableau", "trbdf2", "--tol", "0"}, {"--tol", "(0, 1)"}},
+                     {{"--newton", "quasi"}, {"--newton", "'quasi'", "full", "modified", "one"}},
+                     {{"--newton", "one", "--newton-max-iter", "5"}, {"--newton-max-iter", "one iteration"}},
+                     {{"--linear-solver", "cg", "--jacobian", "exact"}, {"--linear-solver", "cg", "definite"}},
+                     {{"--newton-tol", "2"}, {"--newton-tol", "(0, 1)"}},
+                 });
+}
+
+TEST_CASE("ch09_implicit_runge_kutta: a controlled TR-BDF2 run reports its Newton work and rejected steps") {
+  const ProgramFolder folder;
+  const ProgramRun run = folder.run("ch09_implicit_runge_kutta", {"--tableau", "trbdf2", "--tol", "1e-4", "--newton",
+                                                                  "modified", "--t-end", "0.2", "--out", "run"});
+  CAPTURE(run.err);
+  REQUIRE(run.status == 0);
+  const std::string txt = read_text(folder.cwd() / "run" / "run.txt");
+  for (const char* key : {"tableau = trbdf2", "newton = modified", "tol = 0.0001", "rejected_steps = ",
+                          "newton_failures = ", "linear_solves = ", "factorizations = ", "status = ok"}) {
+    CAPTURE(key);
+    CHECK(txt.find(key) != std::string::npos);
+  }
 }
 #endif

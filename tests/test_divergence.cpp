@@ -2,8 +2,8 @@
 // and keeps its outputs up to the last sane state; a Newton step that fails is reported with its residual and is
 // never accepted. Checked in the library (simulate, ImplicitEuler) and end to end (the chapter programs).
 #include "model/force_field.hpp"
-#include "integrators/explicit_euler.hpp"
 #include "integrators/implicit_euler.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/run_outputs.hpp"
 #include "program_runner.hpp"
@@ -79,7 +79,8 @@ TEST_CASE("explicit Euler at K = 1e5, h = 0.01 diverges: the run stops at the fi
   p.stiffness = 1e5;
   const cloth::Scene scene(p);
   cloth::ForceField field(scene);
-  cloth::ExplicitEuler euler(field);
+  const auto euler_stepper = cloth::make_stepper("explicit_euler", field);
+  cloth::Stepper& euler = *euler_stepper;
   cloth::RunSettings rs;
   rs.dt = 0.01;
   rs.t_end = 1.0;
@@ -101,7 +102,8 @@ TEST_CASE("explicit Euler at K = 1e5, h = 0.01 diverges: the run stops at the fi
   for (const cloth::Frame& f : r.frames) CHECK(f.t <= r.t + 1e-12);
 
   // The kept state is exactly the state after `steps` steps, and one more step is the insane one.
-  cloth::ExplicitEuler again(field);
+  const auto again_stepper = cloth::make_stepper("explicit_euler", field);
+  cloth::Stepper& again = *again_stepper;
   cloth::Vector x = scene.initial_positions(), v = scene.initial_velocities();
   for (long long k = 0; k < r.steps; ++k) again.step(rs.dt, x, v);
   CHECK((x.array() == r.x.array()).all());
@@ -159,6 +161,7 @@ TEST_CASE("Newton capped at 2 iterations on a stiff step fails, reports step, ti
   rs.t_end = 0.1;
   const cloth::RunResult r = cloth::simulate(runner, rs);
   CHECK(r.status == cloth::RunStatus::step_failed);
+  CHECK(r.failure == cloth::StepFailureKind::newton_not_converged);  // the run carries what stopped the step
   CHECK(r.steps == 0);
   CAPTURE(r.message);
   CHECK(contains(r.message, "step 1, t = 0.01"));

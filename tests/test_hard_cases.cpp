@@ -1,7 +1,7 @@
 // Chapter 7's hard cases: very stiff undamped springs, coincident particles, a cloth on one corner and a rigid
 // rotation, a violent start, a 100 x 100 grid, and a 60 s run, each checked against what must hold.
 #include "integrators/implicit_euler.hpp"
-#include "integrators/methods.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 
 #include <doctest/doctest.h>
@@ -15,7 +15,7 @@ namespace {
 RunResult run(const SceneParams& p, const std::string& method, double h, double T, NewtonSettings newton = {}) {
   const Scene scene(p);
   ForceField field(scene);
-  auto stepper = make_stepper(method, field, newton);
+  auto stepper = make_stepper(method, field, {newton});
   RunSettings settings;
   settings.dt = h;
   settings.t_end = T;
@@ -149,7 +149,7 @@ TEST_CASE("a 100 x 100 cloth with implicit Euler at h = 0.01: both linear solver
     NewtonSettings newton;
     newton.solver = solver;
     if (solver == LinearSolverKind::cg) newton.treatment = StiffnessTreatment::definite;
-    auto stepper = make_stepper("implicit_euler", field, newton);
+    auto stepper = make_stepper("implicit_euler", field, {newton});
     Vector x = scene.initial_positions(), v = scene.initial_velocities();
     REQUIRE(stepper->step(0.01, x, v));  // one step: a 30000-unknown Newton solve per iteration
     CHECK(field.energy(x, v).total() <= E0 + 1e-9 * E0);

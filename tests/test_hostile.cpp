@@ -149,19 +149,26 @@ struct ProgramOutputs {
 std::vector<ProgramOutputs> every_output() {
   const std::vector<std::string> ch03_files = joined(run_files, {"lowest_point.dat"});
   return {
-      {"ch01_springs", {}, {"force_extension.dat", "stretch_energy.dat", "springs.dat", "gradient_check.txt"}},
+      {"ch01_springs",
+       {},
+       {"force_extension.dat", "stretch_energy.dat", "springs.dat", "gradient_check.txt", "spring_counts.md",
+        "gradient_check.md"}},
       {"ch02_explicit_euler", {}, run_files},
       {"ch02_explicit_euler", {"--single-spring"}, {"single_spring.dat"}},
       {"ch02_explicit_euler",
        {"--report-runs"},
-       joined({"single_spring.dat"}, in_folders(joined(prefixed("explicit_"), prefixed("symplectic_")), run_files))},
+       joined({"single_spring.dat"}, in_folders(joined(prefixed("explicit_euler_"), prefixed("symplectic_euler_")), run_files))},
       {"ch03_runge_kutta", {}, ch03_files},
       {"ch03_runge_kutta", {"--report-runs"}, joined({"order.dat"}, in_folders(prefixed("rk4_"), ch03_files))},
       {"ch04_implicit_euler", {}, run_files},
       {"ch04_implicit_euler",
        {"--report-runs"},
-       joined({"comparison.dat", "residuals.dat", "iterations_symmetric.dat", "iterations_definite.dat"},
-              in_folders(joined(prefixed("full_"), prefixed("one_")), run_files))},
+       joined(joined({"comparison.dat", "residuals.dat", "iterations_symmetric.dat", "iterations_definite.dat",
+                      "iterations_symmetric_K200_D20.dat", "iterations_exact_K200_D20.dat", "report_runs.md",
+                      "stiff_step.md", "jacobian_treatments.md", "definite_failure.txt", "stiff_large_step.md",
+                      "cg_run.md", "rk4_agreement.md", "rk4_halving_ratio.md"},
+                     in_folders(joined(prefixed("full_"), prefixed("one_")), run_files)),
+              in_folders({"definite_K50_D0", "stiff_K100000_h0.1", "cg_K50_D0"}, run_files))},
   };
 }
 
@@ -215,7 +222,7 @@ TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad i
       cases.push_back({p.program, p.args, "--out: 'out/" + sub + file_in_the_way, file_at("out/" + sub)});
     }
   }
-  CHECK(cases.size() == 98);
+  CHECK(cases.size() == 122);
   expect_refused(cases);
 }
 
@@ -278,6 +285,15 @@ TEST_CASE("hostile flags: given twice, too small to represent, beyond what the m
        "(*): expected fewer frames or a smaller grid"},
       {"ch02_explicit_euler", {"--grid", "3000000000x3000000000"},
        "--grid: '3000000000x3000000000' has more than 4000000 particles, the largest grid accepted"},
+      {"ch01_springs", {"--spacing", "1e200"},
+       "--spacing: 1e+200 makes the cloth 2.68701e+201 m wide, too large to square in a double; expected a cloth "
+       "narrower than 1e149 m"},
+      {"ch01_springs", {"--K", "1e300"},
+       "--K: 1e+300 N/m gives spring energies 1/2 K l^2 beyond what the model's doubles hold (1e300) at the lengths "
+       "the run may reach; expected a smaller K"},
+      {"ch03_runge_kutta", {"--grid", "300x300", "--frames", "100000", "--dt", "1e-6", "--t-end", "0.1"},
+       "--frames: a run recording 100001 frames of a 300x300 grid needs about 217 GB, more than the * a run may use "
+       "(*): expected fewer frames or a smaller grid"},
       {"ch01_springs", {"--grid", "300x300"},
        "--grid: the gradient check takes time growing as (M N)^2; expected at most 40000 particles (200x200)"},
       // --mass, the new common flag.
@@ -294,14 +310,16 @@ TEST_CASE("hostile flags: given twice, too small to represent, beyond what the m
       {"ch02_explicit_euler", {"--pins", "a\tb"}, "--pins: unknown pin set 'a\\tb': expected corners, corner, edge or none"},
       // --report-runs checks the values its runs use, not only the command line's.
       {"ch04_implicit_euler", {"--report-runs", "--linear-solver", "ldlt", "--jacobian", "exact"},
-       "--linear-solver ldlt needs a symmetric matrix, and the exact Jacobian of a damped cloth is not: use "
-       "--linear-solver ldu or lu, or --jacobian symmetric or definite (--report-runs runs K = 200, D = 20)"},
+       "--newton full --linear-solver ldlt --jacobian exact: linear solver ldlt needs a symmetric matrix, and the "
+       "exact Jacobian of a damped cloth is not: use linear solver ldu or lu, or the symmetric or definite Jacobian "
+       "treatment (--report-runs runs K = 200, D = 20)"},
       {"ch04_implicit_euler", {"--report-runs", "--linear-solver", "cg"},
        "--linear-solver cg: --report-runs compares the symmetric and the definite Newton matrix, and cg takes only the "
        "definite one: expected ldlt, ldu or lu"},
       {"ch04_implicit_euler", {"--report-runs", "--linear-solver", "cg", "--jacobian", "exact"},
-       "--linear-solver cg needs a symmetric positive definite matrix: use --jacobian definite with it, or "
-       "--linear-solver ldlt, ldu or lu (--report-runs runs K = 50, D = 0)"},
+       "--newton full --linear-solver cg --jacobian exact: linear solver cg needs a symmetric positive definite "
+       "matrix: use the definite Jacobian treatment with it, or linear solver ldlt, ldu or lu (--report-runs runs "
+       "K = 50, D = 0)"},
       {"ch02_explicit_euler", {"--report-runs", "--v0", "1e149"},
        "--v0: 1e+149 m/s carries the cloth 2e+149 m in --t-end, too far to square in a double; expected |v0| T below "
        "1e149 m"},
@@ -335,10 +353,10 @@ TEST_CASE("hostile tableau files: not regular, not text, too large, keys twice, 
        "--tableau: @S/high_order.tableau: tableau '@S/high_order.tableau': claims order 3 but the order-3 condition "
        "sum b_i c_i^2 = 1/3 (tree [t^2]) fails by 0.16666666666666669"},
       {"ch03_runge_kutta", {"--tableau", "@S/missing.tableau"},
-       "--tableau: '@S/missing.tableau' is neither a built-in tableau (euler, heun, midpoint, kutta3, rk4, rule38) nor "
+       "--tableau: '@S/missing.tableau' is neither a built-in tableau (explicit_euler, heun, midpoint, kutta3, rk4, rule38) nor "
        "a readable file"},
       {"ch03_runge_kutta", {"--tableau", "\x1b]0;owned\x07"},
-       "--tableau: '\\x1b]0;owned\\x07' is neither a built-in tableau (euler, heun, midpoint, kutta3, rk4, rule38) nor "
+       "--tableau: '\\x1b]0;owned\\x07' is neither a built-in tableau (explicit_euler, heun, midpoint, kutta3, rk4, rule38) nor "
        "a readable file"},
   });
 }

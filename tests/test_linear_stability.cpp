@@ -1,7 +1,7 @@
 // Linear stability on the undamped oscillator (stability functions R(z) at z = i h omega), explicit Euler's
 // energy growth, and implicit Euler's unconditional stability on the stiff report scene.
 #include "model/single_spring.hpp"
-#include "integrators/methods.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 
 #include <doctest/doctest.h>

@@ -1,8 +1,6 @@
 // Every method converges to the same motion of the report's cloth as h shrinks, at the rate its order predicts;
-// and the one-stage tableau "euler" is explicit Euler bit for bit.
-#include "integrators/explicit_euler.hpp"
-#include "integrators/explicit_runge_kutta.hpp"
-#include "integrators/methods.hpp"
+// and explicit Euler, the one-stage tableau run by the Runge-Kutta engine, is Chapter 2's two lines bit for bit.
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 
 #include <doctest/doctest.h>
@@ -18,7 +16,7 @@ Vector final_positions(const std::string& method, double h, double t_end) {
   ForceField field(scene);
   NewtonSettings newton;
   newton.tolerance = 1e-12;
-  auto stepper = make_stepper(method, field, newton);
+  auto stepper = make_stepper(method, field, {newton});
   RunSettings run;
   run.dt = h;
   run.t_end = t_end;
@@ -27,20 +25,42 @@ Vector final_positions(const std::string& method, double h, double t_end) {
   return r.x;
 }
 
+// Explicit Euler as Chapter 2 writes it: x1 = x0 + h v0, v1 = v0 + h a(x0, v0).
+class TwoLineEuler final : public Stepper {
+ public:
+  explicit TwoLineEuler(ForceField& field) : Stepper(field), a_(field.dof_count()) {}
+  [[nodiscard]] std::string name() const override { return "two_line_euler"; }
+  bool step(double h, Vector& x, Vector& v) override {
+    field_.acceleration(x, v, a_);
+    x += h * v;
+    v += h * a_;
+    ++counters_.steps;
+    return true;
+  }
+
+ private:
+  Vector a_;
+};
+
 }  // namespace
 
-TEST_CASE("the one-stage tableau euler gives explicit Euler's final state bit for bit") {
-  const Scene scene{SceneParams{}};
-  ForceField field(scene);
-  ExplicitEuler euler(field);
-  ExplicitRungeKutta tableau(field, tableau_from_argument("euler"));
-  RunSettings run;
-  run.t_end = 1;
-  const RunResult a = simulate(euler, run, false);
-  const RunResult b = simulate(tableau, run, false);
-  CHECK(a.steps == 100);
-  CHECK(a.x == b.x);  // exact equality, not approximate
-  CHECK(a.v == b.v);
+TEST_CASE("explicit Euler, the one-stage tableau run by the engine, gives the two-line step's final state bit for bit") {
+  for (const double damping : {0.0, 2.0}) {  // both finish the 100 steps at K = 50
+    SceneParams p;
+    p.damping = damping;
+    const Scene scene{p};
+    ForceField field(scene);
+    TwoLineEuler two_lines(field);
+    const auto registered = make_stepper("explicit_euler", field);
+    RunSettings run;
+    run.t_end = 1;
+    const RunResult a = simulate(two_lines, run, false);
+    const RunResult b = simulate(*registered, run, false);
+    CHECK(a.steps == 100);
+    CHECK((a.x.array() == b.x.array()).all());  // exact equality, not approximate
+    CHECK((a.v.array() == b.v.array()).all());
+    CHECK(b.counters.rhs_evaluations == 100);
+  }
 }
 
 TEST_CASE("every method approaches RK4 at h = 1e-4 on the report scene as its order predicts") {

@@ -1,12 +1,17 @@
 // Output files that cannot be written in full are reported, never passed over: every writer throws OutputError
-// naming the file, and a chapter program turns it into one line on stderr and exit status 2. A full disk is
-// played by Linux's /dev/full, which accepts the open and refuses every write with ENOSPC.
+// naming the file and the system's reason, and a chapter program turns it into one line on stderr and exit
+// status 4. A full disk is a 64 KiB tmpfs (small_disk.hpp); a folder that appears under a final name during the
+// run is the other way a finished file can fail to take its place.
 #include "program/output.hpp"
 #include "program_runner.hpp"
+#include "small_disk.hpp"
 
 #include <doctest/doctest.h>
 
+#include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 using namespace cloth_test;
 
@@ -32,34 +37,59 @@ TEST_CASE("a writer that cannot open its file throws OutputError naming it") {
   CHECK(message == "cannot write '" + path + "': No such file or directory");
 }
 
-#ifdef __linux__
-// Skipped until the full-disk cases move to a small tmpfs: files are now written under a temporary name and
-// renamed, so a path that is /dev/full no longer reaches the disk-full error.
-TEST_CASE("a full disk (/dev/full) is detected by every writer, naming the file and the reason" * doctest::skip()) {
-  REQUIRE(fs::exists("/dev/full"));
-  const std::string expected = "cannot write '/dev/full': No space left on device";
-  // One short line: it stays in stdio's buffer until fclose, where the refused write shows.
-  CHECK(output_error_of([] { cloth::write_key_values("/dev/full", {{"method", "rk4"}}); }) == expected);
-  const cloth::Scene scene(cloth::SceneParams{});
-  const cloth::Vector x = scene.initial_positions(), v = scene.initial_velocities();
-  // Many lines: stdio flushes (and fails) while writing, long before the end.
-  CHECK(output_error_of([&] { cloth::write_final("/dev/full", scene, x, v); }) == expected);
-  CHECK(output_error_of([&] { cloth::write_energy("/dev/full", {{0.0, {}}}); }) == expected);
-  cloth::Vector all(3 * scene.particle_count());  // a frame holds every particle, pinned ones included
-  scene.all_positions(x, all);
-  CHECK(output_error_of([&] { cloth::write_frames("/dev/full", scene.grid(), {{0.0, all}}); }) == expected);
+TEST_CASE("OutputFile: a folder that appears under the final name is a write error (exit 4), no file is left") {
+  ScratchDir scratch;
+  const fs::path path = scratch.path() / "run.txt";
+  std::string message;
+  try {
+    cloth::OutputFile f(path.string());
+    std::fputs("status = ok\n", f.get());
+    fs::create_directory(path);  // in the way only now, after the run started
+    f.commit();
+  } catch (const cloth::OutputError& e) {
+    message = e.what();
+  }
+  CHECK(message == "cannot write '" + path.string() + "': Is a directory");
+  CHECK(fs::is_directory(path));
+  CHECK(!fs::exists(scratch.path() / "run.txt.partial"));
 }
 
-#ifdef CLOTH_HAVE_CH02_EXPLICIT_EULER
-TEST_CASE("ch02_explicit_euler writing final.dat to a full disk: status 2, one line naming the file" * doctest::skip()) {
-  const ProgramFolder folder;
-  const fs::path out = folder.cwd() / "out";
-  fs::create_directory(out);
-  fs::create_symlink("/dev/full", out / "final.dat");
-  const ProgramRun run = folder.run("ch02_explicit_euler", {"--grid", "4x4", "--t-end", "0.1", "--out", "out"});
-  CAPTURE(run.err);
-  CHECK(run.status == 2);
-  CHECK(run.err == "ch02_explicit_euler: --out: cannot write 'out/final.dat': No space left on device\n");
+#ifdef __linux__
+TEST_CASE("a full disk (a 64 KiB tmpfs) is detected by every writer, naming the file and the reason") {
+  const SmallDisk disk;
+  if (!disk.mounted()) {
+    MESSAGE("skipped: mounting a 64 KiB tmpfs is not permitted here (" << disk.why() << ")");
+    return;
+  }
+  const std::vector<cloth::EnergySample> samples(3000, cloth::EnergySample{0.125, {1.0 / 3, -2.0 / 3, 1e-9}});
+  const std::string dir = disk.path().string() + "/";
+  const auto error_of = [](const std::function<void()>& write) {
+    try {
+      write();
+    } catch (const cloth::OutputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // Each writer alone on the empty disk, with more than 64 KiB to write; each leaves nothing behind.
+  CHECK(error_of([&] { cloth::write_energy(dir + "energy.dat", samples); }) ==
+        "cannot write '" + dir + "energy.dat': No space left on device");
+  cloth::SceneParams big;
+  big.grid = {60, 60, 0.1};  // 3600 lines of final.dat: more than 64 KiB even at rest
+  const cloth::Scene large(big);
+  cloth::Vector large_all(3 * large.particle_count());
+  large.all_positions(large.initial_positions(), large_all);
+  CHECK(error_of([&] {
+          cloth::write_frames(dir + "frames.dat", large.grid(), std::vector<cloth::Frame>(10, {0.0, large_all}));
+        }) == "cannot write '" + dir + "frames.dat': No space left on device");
+  CHECK(error_of([&] { cloth::write_text(dir + "big.txt", std::string(70000, 'x')); }) ==
+        "cannot write '" + dir + "big.txt': No space left on device");
+  CHECK(error_of([&] { cloth::write_final(dir + "final.dat", large, large.initial_positions(),
+                                          large.initial_velocities()); }) ==
+        "cannot write '" + dir + "final.dat': No space left on device");
+  std::vector<std::pair<std::string, std::string>> many(2000, {"key", std::string(40, 'v')});
+  CHECK(error_of([&] { cloth::write_key_values(dir + "run.txt", many); }) ==
+        "cannot write '" + dir + "run.txt': No space left on device");
+  CHECK(entry_count(disk.path()) == 0);
 }
-#endif
 #endif

@@ -5,9 +5,9 @@
 
 #include "model/force_field.hpp"
 #include "base/input_error.hpp"
-#include "integrators/explicit_euler.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
-#include "integrators/symplectic_euler.hpp"
+#include "model/report_cases.hpp"
 
 #include <memory>
 #include <random>
@@ -94,9 +94,7 @@ TEST_CASE("pinned particles never move during a run, for every pin set and both 
       p.damping = 2.0;
       const Scene scene(p);
       ForceField field(scene);
-      std::unique_ptr<Stepper> stepper;
-      if (symplectic) stepper = std::make_unique<SymplecticEuler>(field);
-      else stepper = std::make_unique<ExplicitEuler>(field);
+      const auto stepper = make_stepper(symplectic ? "symplectic_euler" : "explicit_euler", field);
       RunSettings run;
       run.dt = 0.002;
       run.t_end = 0.2;
@@ -135,9 +133,7 @@ TEST_CASE("a free cloth's centre of mass moves exactly as the stepper moves one 
     const Scene scene(p);
     CHECK(scene.dof_count() == 3 * 7 * 4);
     ForceField field(scene);
-    std::unique_ptr<Stepper> stepper;
-    if (symplectic) stepper = std::make_unique<SymplecticEuler>(field);
-    else stepper = std::make_unique<ExplicitEuler>(field);
+    const auto stepper = make_stepper(symplectic ? "symplectic_euler" : "explicit_euler", field);
 
     std::mt19937 rng(21);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -161,4 +157,19 @@ TEST_CASE("a free cloth's centre of mass moves exactly as the stepper moves one 
     CHECK(got.y() == doctest::Approx(expected.y()).epsilon(1e-11));
     CHECK(got.z() == doctest::Approx(expected.z()).epsilon(1e-11));
   }
+}
+
+TEST_CASE("the report's cases are (50, 0), (200, 0), (200, 20), named as their folders, and change only K and D") {
+  REQUIRE(report_cases.size() == 3);
+  CHECK(report_cases[0].name() == "K50_D0");
+  CHECK(report_cases[1].name() == "K200_D0");
+  CHECK(report_cases[2].name() == "K200_D20");
+  SceneParams base = params(6, 5, PinSet::edge);
+  base.initial_velocity_z = -3;
+  const SceneParams p = with_case(base, report_cases[2]);
+  CHECK(p.stiffness == 200);
+  CHECK(p.damping == 20);
+  CHECK(p.grid.M == 6);
+  CHECK(p.pins == PinSet::edge);
+  CHECK(p.initial_velocity_z == -3);
 }

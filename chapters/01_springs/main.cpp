@@ -1,8 +1,10 @@
 // Chapter 1: the spring model. Counts each family's springs, tabulates force against extension and the energy of
 // a uniformly stretched sheet, and checks that the forces are minus the gradient of the energy.
 #include "program/command_line.hpp"
+#include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "model/force_field.hpp"
+#include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
 
@@ -58,11 +60,11 @@ int main(int argc, char** argv) {
     require_memory(static_cast<double>(opt.scene.grid.M) * opt.scene.grid.N * explicit_bytes_per_particle(), "--grid",
                    "the scene");
     const Scene scene(opt.scene);
-    prepare_outputs(opt.run.out_dir, {"force_extension.dat", "stretch_energy.dat", "springs.dat", "gradient_check.txt"});
+    prepare_outputs(opt.run.out_dir, {"force_extension.dat", "stretch_energy.dat", "springs.dat", "gradient_check.txt",
+                                      "spring_counts.md", "gradient_check.md"});
     const std::string dir = opt.run.out_dir + "/";
     const Grid& g = scene.grid();
 
-    // [spring_counts]
     std::printf("grid %dx%d, spacing %g m: %d particles, %d free\n", g.M, g.N, g.d, scene.particle_count(),
                 scene.free_count());
     for (SpringFamily f : all_spring_families)
@@ -72,7 +74,21 @@ int main(int argc, char** argv) {
                                                  scene.springs().family[static_cast<int>(f)].begin)].rest_length
                                            : 0.0);
     std::printf("  total      springs: %4d\n", scene.springs().size());
-    // [spring_counts]
+    // The same counts for the chapter's page, beside the closed forms of cloth::spring_count.
+    const std::string command = reader_command(argc, argv);
+    {
+      MarkdownTable counts({"family", "springs built", "closed form", "rest length [m]"}, "lrrr");
+      for (SpringFamily f : all_spring_families) {
+        const SpringRange r = scene.springs().family[static_cast<int>(f)];
+        const std::string rest_length =
+            r.end > r.begin ? format_number(scene.springs().springs[static_cast<std::size_t>(r.begin)].rest_length)
+                            : "(none)";
+        counts.add_row({family_name(f), std::to_string(scene.springs().count(f)),
+                        std::to_string(spring_count(f, g.M, g.N)), rest_length});
+      }
+      counts.add_row({"all", std::to_string(scene.springs().size()), "", ""});
+      write_table_fragment(dir + "spring_counts.md", counts, command);
+    }
 
     // Force along the spring, K (L0 - l), and its energy, for one spring of each family, l from 0 to 2 L0.
     {
@@ -170,6 +186,12 @@ int main(int argc, char** argv) {
     char line[64];
     std::snprintf(line, sizeof line, "largest_relative_error = %.3e\n", worst);
     write_text(dir + "gradient_check.txt", line);
+    MarkdownTable check({"randomly perturbed sheet (every coordinate moved by up to 0.3 d)", "measured"}, "lr");
+    check.add_row({"spring energy", format_number(e.spring, 3) + " J"});
+    check.add_row({"gravity energy", format_number(e.gravity, 3) + " J"});
+    check.add_row({"largest relative difference between f and -grad E (central differences, eps = 1e-6)",
+                   format_number(worst, 3)});
+    write_table_fragment(dir + "gradient_check.md", check, command);
     if (worst >= 1e-6) {  // the forces are not the energy's gradient: a bug in the model, so an internal error
       std::fprintf(stderr, "ch01_springs: internal error: f = -grad E fails by %.2e (expected < 1e-6)\n", worst);
       return 1;

@@ -4,8 +4,9 @@
 #include "analysis/fastest_modes.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "model/report_cases.hpp"
 #include "model/single_spring.hpp"
-#include "integrators/methods.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/interrupt.hpp"
 #include "program/limits.hpp"
@@ -13,6 +14,7 @@
 #include "program/progress.hpp"
 #include "program/run_outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -22,9 +24,8 @@ using namespace cloth;
 
 namespace {
 
-std::string stepper_name(const std::string& method) {
-  return method == "explicit" ? "explicit_euler" : "symplectic_euler";
-}
+// The chapter's two methods, registry names.
+const std::vector<std::string> chapter_methods = {"explicit_euler", "symplectic_euler"};
 
 // [single_spring_measurement]
 // Runs the single spring of single_spring.hpp with explicit and symplectic Euler and writes single_spring.dat:
@@ -72,18 +73,9 @@ double measure_single_spring(const SceneParams& params, const RunSettings& run, 
 }
 // [single_spring_measurement]
 
-// The report's three (K, D), run with both methods by --report-runs, each in its own subfolder.
-struct Config {
-  double K, D;
-};
-constexpr Config report_configs[] = {{50, 0}, {200, 0}, {200, 20}};
-const char* const report_methods[] = {"explicit", "symplectic"};
-
-std::string report_folder(const std::string& method, const Config& c) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%s_K%g_D%g", method.c_str(), c.K, c.D);
-  return name;
-}
+// The report's three (K, D) (model/report_cases.hpp), run with both methods by --report-runs, each in its own
+// subfolder.
+std::string report_folder(const std::string& method, const ReportCase& c) { return method + "_" + c.name(); }
 
 // What each mode writes into --out, so that the folder is checked before anything runs and the files of another
 // mode, left by an earlier run, are removed.
@@ -91,8 +83,8 @@ std::vector<std::string> outputs_of(bool single_spring, bool report_runs) {
   if (single_spring) return {"single_spring.dat"};
   if (!report_runs) return run_output_names();
   std::vector<std::string> names = {"single_spring.dat"};
-  for (const char* m : report_methods)
-    for (const Config& c : report_configs)
+  for (const std::string& m : chapter_methods)
+    for (const ReportCase& c : report_cases)
       for (const std::string& file : run_output_names()) names.push_back(report_folder(m, c) + "/" + file);
   return names;
 }
@@ -102,7 +94,7 @@ int run_cloth(const SceneParams& params, RunSettings run, const std::string& met
               const std::string& program) {
   const Scene scene(params);
   ForceField field(scene);
-  auto stepper = make_stepper(stepper_name(method), field);
+  auto stepper = make_stepper(method, field);
   run.out_dir = dir;
   const double omega_max = fastest_rest_frequency(field);
   const double hw = run.dt * omega_max;
@@ -124,15 +116,15 @@ int run_cloth(const SceneParams& params, RunSettings run, const std::string& met
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string method = "explicit";
+  std::string method = "explicit_euler";
   bool single_spring = false, report_runs = false;
   CommandLine cli("ch02_explicit_euler",
                   "Chapter 2: explicit Euler (or symplectic Euler) on the report's cloth, and explicit Euler's energy\n"
                   "growth factor measured on a single undamped spring.");
-  cli.add_value("--method", "explicit|symplectic", "explicit Euler (default) or symplectic Euler",
+  cli.add_value("--method", "explicit_euler|symplectic_euler", "explicit Euler (default) or symplectic Euler",
                 [&](const std::string& s) {
-                  if (s != "explicit" && s != "symplectic")
-                    throw InputError("unknown method '" + s + "': expected explicit or symplectic");
+                  if (std::find(chapter_methods.begin(), chapter_methods.end(), s) == chapter_methods.end())
+                    throw InputError("unknown method '" + s + "': expected explicit_euler or symplectic_euler");
                   method = s;
                 });
   cli.add_switch("--single-spring",
@@ -148,13 +140,8 @@ int main(int argc, char** argv) {
     if (single_spring && opt.scene.damping != 0)
       throw InputError("--single-spring: the growth factor is for D = 0; drop --damping");
     // Every run of --report-runs is checked with the values it uses, before the first one starts.
-    for (const Config& c : report_runs ? std::vector<Config>(std::begin(report_configs), std::end(report_configs))
-                                       : std::vector<Config>{}) {
-      SceneParams p = opt.scene;
-      p.stiffness = c.K;
-      p.damping = c.D;
-      require_representable(p, opt.run);
-    }
+    if (report_runs)
+      for (const ReportCase& c : report_cases) require_representable(with_case(opt.scene, c), opt.run);
     std::vector<std::string> every_output = outputs_of(false, false);  // what any mode writes
     for (const std::string& name : outputs_of(false, true)) every_output.push_back(name);
     prepare_outputs(opt.run.out_dir, outputs_of(single_spring, report_runs), every_output);
@@ -164,19 +151,15 @@ int main(int argc, char** argv) {
     }
     if (!report_runs) return run_cloth(opt.scene, opt.run, method, opt.run.out_dir, cli.program());
 
-    // [report_runs]
-    for (const std::string m : report_methods)
-      for (const Config& c : report_configs) {
-        SceneParams p = opt.scene;
-        p.stiffness = c.K;
-        p.damping = c.D;
+    for (const std::string& m : chapter_methods)
+      for (const ReportCase& c : report_cases) {
+        const SceneParams p = with_case(opt.scene, c);
         // A divergence is a result here; an interruption ends the program (the interrupted run said so).
         if (const int status = run_cloth(p, opt.run, m, opt.run.out_dir + "/" + report_folder(m, c), cli.program());
             status >= 128)
           return status;
       }
     measure_single_spring(single_spring_params(200, 0), opt.run, opt.run.out_dir);
-    // [report_runs]
     return 0;
   });
 }

@@ -17,14 +17,14 @@ set key top left
 set output plots.'/ch02_energy.png'
 set multiplot layout 1,2 title "Total energy of the 20 x 20 cloth, h = 0.01 s (a curve that stops: the run diverged)"
 set title "explicit Euler"
-plot data.'/explicit_K50_D0/energy.dat'   using 1:5 with lines lw 2 lc rgb "#1f77b4" title "K = 50, D = 0", \
-     data.'/explicit_K200_D0/energy.dat'  using 1:5 with lines lw 2 lc rgb "#d62728" title "K = 200, D = 0", \
-     data.'/explicit_K200_D20/energy.dat' using 1:5 with lines lw 2 lc rgb "#2ca02c" title "K = 200, D = 20", \
+plot data.'/explicit_euler_K50_D0/energy.dat'   using 1:5 with lines lw 2 lc rgb "#1f77b4" title "K = 50, D = 0", \
+     data.'/explicit_euler_K200_D0/energy.dat'  using 1:5 with lines lw 2 lc rgb "#d62728" title "K = 200, D = 0", \
+     data.'/explicit_euler_K200_D20/energy.dat' using 1:5 with lines lw 2 lc rgb "#2ca02c" title "K = 200, D = 20", \
      79200 with lines dt 2 lc rgb "black" title "E(0) = 79200 J"
 set title "symplectic Euler"
-plot data.'/symplectic_K50_D0/energy.dat'   using 1:5 with lines lw 2 lc rgb "#1f77b4" title "K = 50, D = 0", \
-     data.'/symplectic_K200_D0/energy.dat'  using 1:5 with lines lw 2 lc rgb "#d62728" title "K = 200, D = 0", \
-     data.'/symplectic_K200_D20/energy.dat' using 1:5 with lines lw 2 lc rgb "#2ca02c" title "K = 200, D = 20", \
+plot data.'/symplectic_euler_K50_D0/energy.dat'   using 1:5 with lines lw 2 lc rgb "#1f77b4" title "K = 50, D = 0", \
+     data.'/symplectic_euler_K200_D0/energy.dat'  using 1:5 with lines lw 2 lc rgb "#d62728" title "K = 200, D = 0", \
+     data.'/symplectic_euler_K200_D20/energy.dat' using 1:5 with lines lw 2 lc rgb "#2ca02c" title "K = 200, D = 20", \
      79200 with lines dt 2 lc rgb "black" title "E(0) = 79200 J"
 unset multiplot
 

@@ -5,8 +5,10 @@
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "base/text.hpp"
+#include "model/report_cases.hpp"
 #include "model/single_spring.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
@@ -56,20 +58,20 @@ int run_cloth(const SceneParams& params, RunSettings run, const ButcherTableau& 
 
 // The report's three (K, D) of --report-runs, each in a subfolder named after the tableau: the name comes from
 // the tableau file, so it is reduced to a safe file name first, and the folder can only ever be inside --out.
-struct Config {
-  double K, D;
-};
-constexpr Config report_configs[] = {{50, 0}, {200, 0}, {200, 20}};
-
-std::string report_folder(const ButcherTableau& tableau, const Config& c) {
-  char suffix[64];
-  std::snprintf(suffix, sizeof suffix, "_K%g_D%g", c.K, c.D);
-  return safe_file_name(tableau.name, 48, "tableau") + suffix;
+std::string report_folder(const ButcherTableau& tableau, const ReportCase& c) {
+  return safe_file_name(tableau.name, 48, "tableau") + "_" + c.name();
 }
 
 std::vector<std::string> single_run_outputs() {
   std::vector<std::string> names = run_output_names();
   names.emplace_back("lowest_point.dat");
+  return names;
+}
+
+// The registry's explicit Runge-Kutta methods: "explicit_euler, heun, ...".
+std::string tableau_names() {
+  std::string names;
+  for (const Method* m : methods_of(MethodFamily::explicit_runge_kutta)) names += (names.empty() ? "" : ", ") + m->name;
   return names;
 }
 
@@ -86,13 +88,14 @@ void measure_orders(const std::string& dir) {
   OutputFile file(dir + "/order.dat");
   std::FILE* out = file.get();
   std::fprintf(out, "# h");
-  for (const ButcherTableau& t : builtin_tableaus()) std::fprintf(out, " %s", t.name.c_str());
+  const std::vector<const Method*> tableaus = methods_of(MethodFamily::explicit_runge_kutta);
+  for (const Method* m : tableaus) std::fprintf(out, " %s", m->name.c_str());
   std::fprintf(out, "\n");
   for (int k = 1; k <= 10; ++k) {
     const double h = 0.1 / std::pow(2.0, k);
     std::fprintf(out, "%.10g", h);
-    for (const ButcherTableau& t : builtin_tableaus()) {
-      ExplicitRungeKutta stepper(field, t);
+    for (const Method* m : tableaus) {
+      ExplicitRungeKutta stepper(field, *m->tableau);
       Vector x, v;
       single_spring_initial_state(scene, s0, x, v);
       const Vector rest = scene.initial_positions();
@@ -117,7 +120,7 @@ int main(int argc, char** argv) {
   CommandLine cli("ch03_runge_kutta",
                   "Chapter 3: an explicit Runge-Kutta method from its Butcher tableau on the report's cloth.");
   cli.add_value("--tableau", "NAME|FILE",
-                "a built-in tableau (euler, heun, midpoint, kutta3, rk4, rule38; default rk4) or a tableau file",
+                "an explicit Runge-Kutta method of the registry (" + tableau_names() + "; default rk4) or a tableau file",
                 [&](const std::string& s) { tableau_argument = s; });
   cli.add_switch("--report-runs",
                  "the chosen tableau on the report's (K, D) = (50,0), (200,0), (200,20), one subfolder of --out each, "
@@ -134,7 +137,7 @@ int main(int argc, char** argv) {
     const bool builtin = tableau.name == tableau_argument;
     const std::string source = builtin ? "builtin" : escaped(tableau_argument);
     std::vector<std::string> report_outputs = {"order.dat"};
-    for (const Config& c : report_configs)
+    for (const ReportCase& c : report_cases)
       for (const std::string& name : single_run_outputs()) report_outputs.push_back(report_folder(tableau, c) + "/" + name);
     if (!report_runs) {
       prepare_outputs(opt.run.out_dir, single_run_outputs(), report_outputs);
@@ -145,17 +148,13 @@ int main(int argc, char** argv) {
     // --dt, and checked as such, with the values each run uses, before the first one starts.
     opt.run.frames = static_cast<int>(std::min<long long>(step_count(opt.run), 100000));
     require_run_memory(opt.scene, opt.run, explicit_bytes_per_particle(), "--t-end");
-    for (const Config& c : report_configs) {
-      SceneParams p = opt.scene;
-      p.stiffness = c.K;
-      p.damping = c.D;
+    for (const ReportCase& c : report_cases) {
+      const SceneParams p = with_case(opt.scene, c);
       require_representable(p, opt.run);
     }
     prepare_outputs(opt.run.out_dir, report_outputs, single_run_outputs());
-    for (const Config& c : report_configs) {
-      SceneParams p = opt.scene;
-      p.stiffness = c.K;
-      p.damping = c.D;
+    for (const ReportCase& c : report_cases) {
+      const SceneParams p = with_case(opt.scene, c);
       // A divergence is a result here; an interruption ends the program (the interrupted run said so).
       if (const int status = run_cloth(p, opt.run, tableau, source, opt.run.out_dir + "/" + report_folder(tableau, c),
                                        cli.program());

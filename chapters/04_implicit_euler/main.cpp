@@ -3,18 +3,24 @@
 #include "program/command_line.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/implicit_euler.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
+#include "model/report_cases.hpp"
+#include "program/fragment.hpp"
 #include "program/interrupt.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
 #include "program/progress.hpp"
 #include "program/run_outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -22,18 +28,21 @@ using namespace cloth;
 
 namespace {
 
-const char* treatment_name(StiffnessTreatment t) {
-  switch (t) {
-    case StiffnessTreatment::exact: return "exact";
-    case StiffnessTreatment::symmetric: return "symmetric";
-    case StiffnessTreatment::definite: return "definite";
+// validate(NewtonSettings) with its message prefixed by the flags that chose the settings it names.
+void check_settings(const NewtonSettings& newton, const Scene& scene) {
+  try {
+    validate(newton, scene);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--newton ") + newton_variants().name(newton.variant) + " --linear-solver " +
+                     linear_solvers().name(newton.solver) + " --jacobian " +
+                     stiffness_treatments().name(newton.treatment) + ": " + e.what());
   }
-  return "?";
 }
 
 struct Outcome {
   int status;
   RunResult result;
+  std::string method;  // the stepper's name, as run.txt and the failure message give it
 };
 
 // One run of the cloth with `newton` (validated before anything was written), outputs in `dir`.
@@ -46,26 +55,24 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
   run.progress = terminal_progress(program);
   RunResult result = simulate(stepper, run);
   const int status = finish_run(result, stepper, run, program,
-                                {{"linear_solver", linear_solver_name(stepper.settings().solver)},
-                                 {"jacobian", treatment_name(newton.treatment)},
+                                {{"newton", newton_variants().name(newton.variant)},
+                                 {"linear_solver", linear_solvers().name(stepper.settings().solver)},
+                                 {"jacobian", stiffness_treatments().name(newton.treatment)},
                                  {"newton_tol", format_number(newton.tolerance, 10)},
                                  {"newton_max_iter", std::to_string(newton.max_iterations)}});
   if (result.steps > 0)
     std::printf("  Newton iterations per step: %.3f (%lld in %lld steps), %lld factorizations\n",
-                static_cast<double>(result.counters.newton_iterations) / static_cast<double>(result.steps),
+                result.newton_iterations_per_step(),
                 result.counters.newton_iterations, result.steps, result.counters.factorizations);
-  return {status, std::move(result)};
+  return {status, std::move(result), stepper.name()};
 }
 
 // [stiff_step_residuals]
 // The residual |r|_inf after each Newton iteration of the first step of the report scene at K = 1e5 N/m,
 // h = 0.01 s (h omega_max ~ 10): exact Jacobian, sparse LU, tolerance tight enough to watch the sequence reach
-// rounding. Writes residuals.dat: iteration k, |r_k|, |r_k| / |r_{k-1}|^2.
-void stiff_step_residuals(const SceneParams& report_scene, const std::string& dir) {
-  SceneParams p = report_scene;
-  p.stiffness = 1e5;
-  p.damping = 0;
-  const Scene scene(p);
+// rounding.
+std::vector<double> stiff_step_residuals(const SceneParams& report_scene) {
+  const Scene scene(with_K_and_D(report_scene, 1e5, 0));
   ForceField field(scene);
   NewtonSettings newton;
   newton.solver = LinearSolverKind::lu;
@@ -75,7 +82,12 @@ void stiff_step_residuals(const SceneParams& report_scene, const std::string& di
   ImplicitEuler stepper(field, newton);
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   stepper.step(0.01, x, v);  // if it fails the history still shows how far it got
-  const std::vector<double>& r = stepper.residual_history();
+  return stepper.residual_history();
+}
+// [stiff_step_residuals]
+
+// residuals.dat for the figure (iteration k, |r_k|, |r_k| / |r_{k-1}|^2), and the page's table of the same.
+void write_stiff_step(const std::vector<double>& r, const std::string& dir, const std::string& command) {
   OutputFile file(dir + "/residuals.dat");
   std::FILE* out = file.get();
   std::fprintf(out, "# first step of the report scene, K = 1e5, D = 0, h = 0.01, exact Jacobian, LU\n");
@@ -87,13 +99,37 @@ void stiff_step_residuals(const SceneParams& report_scene, const std::string& di
   }
   std::printf("\n");
   file.commit();
+  // The table stops at the rounding floor: the first iterate that no later one improves tenfold. The iterates
+  // after it only wander around the floor, and are summed up in one row.
+  MarkdownTable table({"Newton iteration k", "residual r_k (max norm) [N s]", "r_k / r_(k-1)^2"}, "rrr");
+  std::size_t floor = 0;
+  while (floor + 1 < r.size() && *std::min_element(r.begin() + static_cast<std::ptrdiff_t>(floor) + 1, r.end()) <
+                                     0.1 * r[floor])
+    ++floor;
+  for (std::size_t k = 0; k <= floor && k < r.size(); ++k)
+    table.add_row({std::to_string(k), format_number(r[k], 3),
+                   k == 0 ? "" : k == floor ? "(rounding floor)" : format_number(r[k] / (r[k - 1] * r[k - 1]), 2)});
+  if (floor + 1 < r.size()) {
+    const auto [low, high] = std::minmax_element(r.begin() + static_cast<std::ptrdiff_t>(floor) + 1, r.end());
+    table.add_row({std::to_string(floor + 1) + " to " + std::to_string(r.size() - 1),
+                   format_number(*low, 2) + " to " + format_number(*high, 2), "(rounding floor)"});
+  }
+  write_table_fragment(dir + "/stiff_step.md", table, command);
 }
-// [stiff_step_residuals]
+
+// What one setting's Newton iterations came to, over the steps it took.
+struct IterationSummary {
+  std::string solver;                  // the linear solver the setting resolved to
+  long long accepted = 0;              // steps accepted
+  long long iterations = 0;            // Newton iterations in the accepted steps
+  long long most = 0;                  // most iterations in one accepted step
+  std::optional<std::string> failure;  // the failed step, when one failed
+};
 
 // Newton iterations of every step for one setting, stepping by hand so that each step's count is seen:
 // iterations.dat gets t and the count; a failed step ends the file with its count and the step's time.
-void iterations_per_step(const SceneParams& params, const RunSettings& run, const NewtonSettings& newton,
-                         const std::string& path) {
+IterationSummary iterations_per_step(const SceneParams& params, const RunSettings& run, const NewtonSettings& newton,
+                                     const std::string& path) {
   const Scene scene(params);
   ForceField field(scene);
   ImplicitEuler stepper(field, newton);
@@ -101,83 +137,226 @@ void iterations_per_step(const SceneParams& params, const RunSettings& run, cons
   OutputFile file(path);
   std::FILE* out = file.get();
   std::fprintf(out, "# t newton_iterations final_residual (K = %g, D = %g, h = %g, jacobian %s)\n", params.stiffness,
-               params.damping, run.dt, treatment_name(newton.treatment));
+               params.damping, run.dt, stiffness_treatments().name(newton.treatment));
+  IterationSummary summary;
+  summary.solver = linear_solvers().name(stepper.settings().solver);
   const auto steps = std::llround(run.t_end / run.dt);
   for (long long n = 1; n <= steps && interrupt_signal() == 0; ++n) {
     const long long before = stepper.counters().newton_iterations;
     const bool ok = stepper.step(run.dt, x, v);
-    std::fprintf(out, "%.10g %lld %.6e\n", static_cast<double>(n) * run.dt,
-                 stepper.counters().newton_iterations - before, stepper.residual_history().back());
-    if (!ok) break;
+    const long long iterations = stepper.counters().newton_iterations - before;
+    const double t = static_cast<double>(n) * run.dt;
+    std::fprintf(out, "%.10g %lld %.6e\n", t, iterations, stepper.residual_history().back());
+    if (!ok) {
+      summary.failure = "fails at step " + std::to_string(n) + ", t = " + format_number(t) + " s: " +
+                        std::to_string(iterations) + " iterations, residual " +
+                        format_number(stepper.residual_history().back(), 2);
+      break;
+    }
+    ++summary.accepted;
+    summary.iterations += iterations;
+    summary.most = std::max(summary.most, iterations);
   }
   file.commit();  // whole up to the last step taken, when interrupted too
   throw_if_interrupted();
+  return summary;
 }
 
 // The report's three (K, D), each run with full Newton and with one iteration, in subfolders of --out.
-struct Config {
-  double K, D;
-};
-constexpr Config report_configs[] = {{50, 0}, {200, 0}, {200, 20}};
+std::string report_folder(const char* variant, const ReportCase& c) { return std::string(variant) + "_" + c.name(); }
 
-std::string report_folder(const char* variant, const Config& c) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%s_K%g_D%g", variant, c.K, c.D);
-  return name;
-}
+// The single runs behind the page's other measurements, each in a subfolder: the definite matrix's failure, the
+// stiff cloth at a large step, and conjugate gradients.
+const char* const measured_run_folders[] = {"definite_K50_D0", "stiff_K100000_h0.1", "cg_K50_D0"};
 
 std::vector<std::string> report_outputs() {
   std::vector<std::string> names = {"comparison.dat", "residuals.dat", "iterations_symmetric.dat",
-                                    "iterations_definite.dat"};
-  for (const Config& c : report_configs)
+                                    "iterations_definite.dat", "iterations_symmetric_K200_D20.dat",
+                                    "iterations_exact_K200_D20.dat"};
+  // The page's tables, sentences and transcript (program/fragment.hpp).
+  for (const char* fragment : {"report_runs.md", "stiff_step.md", "jacobian_treatments.md", "definite_failure.txt",
+                               "stiff_large_step.md", "cg_run.md", "rk4_agreement.md", "rk4_halving_ratio.md"})
+    names.emplace_back(fragment);
+  for (const ReportCase& c : report_cases)
     for (const char* variant : {"full", "one"})
       for (const std::string& file : run_output_names()) names.push_back(report_folder(variant, c) + "/" + file);
+  for (const char* folder : measured_run_folders)
+    for (const std::string& file : run_output_names()) names.push_back(std::string(folder) + "/" + file);
   return names;
+}
+
+// What the Newton matrix's treatment costs: the exact (= symmetric) Hessian against the definite matrix on the
+// undamped report scene, and the exact Jacobian against the symmetric one with damping.
+void treatments_table(const Options& opt, const NewtonSettings& newton, const IterationSummary& sym,
+                      const IterationSummary& def, const std::string& dir, const std::string& command) {
+  MarkdownTable table({"K, D", "Jacobian", "solver", "Newton iterations per step", "most in one step", "outcome"},
+                      "llrrrl");
+  const auto add = [&](const std::string& KD, const std::string& jacobian, const IterationSummary& s) {
+    const double mean = s.accepted ? static_cast<double>(s.iterations) / static_cast<double>(s.accepted) : 0.0;
+    table.add_row({KD, jacobian, s.solver, format_fixed(mean, 2), std::to_string(s.most),
+                   s.failure ? "**" + *s.failure + "**" : "finishes the " + format_number(opt.run.t_end) + " s"});
+  };
+  add("50, 0", "symmetric (= exact here)", sym);
+  add("50, 0", "definite", def);
+  SceneParams damped = opt.scene;
+  damped.stiffness = 200;
+  damped.damping = 20;
+  NewtonSettings exact = newton, symmetric = newton;  // each with the solver its matrix calls for
+  exact.solver = symmetric.solver = LinearSolverKind::automatic;
+  exact.variant = symmetric.variant = NewtonVariant::full;
+  exact.treatment = StiffnessTreatment::exact;
+  symmetric.treatment = StiffnessTreatment::symmetric;
+  add("200, 20", "symmetric",
+      iterations_per_step(damped, opt.run, symmetric, dir + "/iterations_symmetric_K200_D20.dat"));
+  add("200, 20", "exact", iterations_per_step(damped, opt.run, exact, dir + "/iterations_exact_K200_D20.dat"));
+  write_table_fragment(dir + "/jacobian_treatments.md", table, command);
+}
+
+// The run a reader gets with `--jacobian definite`, and what it prints when its Newton iteration stalls.
+int definite_failure_transcript(const SceneParams& params, const RunSettings& run, const NewtonSettings& definite,
+                                const std::string& dir, const std::string& program) {
+  const Outcome o = run_cloth(params, run, definite, dir + "/" + measured_run_folders[0], program);
+  if (o.status >= 128) return o.status;
+  std::string text = "$ build/bin/" + program + " --jacobian definite\n";
+  if (o.status != 0) text += program + ": " + o.method + " " + o.result.message + "\n";
+  write_text_fragment(dir + "/definite_failure.txt", text + "$ echo $?\n" + std::to_string(o.status) + "\n");
+  return 0;
+}
+
+// Numbers the page quotes in its prose, each in a sentence of its own (Doxygen includes a file as a separate
+// word, so the page includes each at the end of a line): the stiff cloth at a large step, which the line search
+// makes possible, and conjugate gradients on the report scene.
+int measured_sentences(const Options& opt, const NewtonSettings& newton, const std::string& dir,
+                       const std::string& program) {
+  SceneParams stiff = opt.scene;
+  stiff.stiffness = 1e5;
+  stiff.damping = 0;
+  RunSettings large_step = opt.run;
+  large_step.dt = 0.1;
+  NewtonSettings exact = newton;
+  exact.solver = LinearSolverKind::automatic;
+  exact.treatment = StiffnessTreatment::exact;
+  exact.variant = NewtonVariant::full;
+  const Outcome a = run_cloth(stiff, large_step, exact, dir + "/" + measured_run_folders[1], program);
+  if (a.status >= 128) return a.status;
+  write_text_fragment(dir + "/stiff_large_step.md",
+                      "At h = " + format_number(large_step.dt) + " s it takes " + std::to_string(a.result.steps) +
+                          " steps to t = " + format_number(a.result.t) + " s, with " +
+                          format_number(a.result.newton_iterations_per_step(), 2) + " Newton iterations per step.");
+  SceneParams report_scene = opt.scene;
+  report_scene.stiffness = 50;
+  report_scene.damping = 0;
+  RunSettings short_run = opt.run;
+  short_run.t_end = 0.3;
+  NewtonSettings cg = newton;
+  cg.solver = LinearSolverKind::cg;
+  cg.treatment = StiffnessTreatment::definite;
+  cg.variant = NewtonVariant::full;
+  const Outcome b = run_cloth(report_scene, short_run, cg, dir + "/" + measured_run_folders[2], program);
+  if (b.status >= 128) return b.status;
+  const StepCounters& n = b.result.counters;
+  const double cg_per_solve =
+      n.newton_iterations ? static_cast<double>(n.cg_iterations) / static_cast<double>(n.newton_iterations) : 0.0;
+  write_text_fragment(dir + "/cg_run.md",
+                      "On the report scene (K = 50, D = 0) its " + std::to_string(b.result.steps) + " steps to t = " +
+                          format_number(b.result.t) + " s took " + format_number(b.result.newton_iterations_per_step(), 2) +
+                          " Newton iterations per step and " + format_number(cg_per_solve, 2) +
+                          " CG iterations per solve, " + std::to_string(n.cg_iterations) + " in all.");
+  return 0;
+}
+
+// Implicit Euler against RK4 on the damped report scene (K = 200, D = 20) to t = 1 s: RK4 at h = 1e-3 is the
+// reference (its own error, estimated from RK4 at h/2, is far smaller), and implicit Euler's distance from it
+// should halve with h, the method being of first order. Distances are max norms over all coordinates.
+void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const NewtonSettings& newton,
+                        const std::string& dir, const std::string& command) {
+  const SceneParams p = with_K_and_D(report_scene, 200, 20);
+  run.t_end = 1;
+  const Scene scene(p);
+  ForceField field(scene);
+  const auto run_with = [&](Stepper& stepper, double h) {
+    run.dt = h;
+    RunResult r = simulate(stepper, run, false);
+    throw_if_interrupted();
+    if (r.status != RunStatus::ok) throw std::runtime_error(stepper.name() + " " + r.message);
+    return r;
+  };
+  ExplicitRungeKutta rk4(field, *find_method("rk4").tableau);
+  const double steps[2] = {1e-3, 5e-4};
+  const RunResult reference = run_with(rk4, steps[0]);
+  const RunResult rk4_half = run_with(rk4, steps[1]);
+  MarkdownTable table({"K = 200, D = 20, to t = 1 s", "largest position difference from RK4 at h = 0.001 [m]",
+                       "Newton iterations per step"}, "lrr");
+  NewtonSettings exact = newton;
+  exact.solver = LinearSolverKind::automatic;
+  exact.treatment = StiffnessTreatment::exact;
+  exact.variant = NewtonVariant::full;
+  double distance[2];
+  for (int k = 0; k < 2; ++k) {
+    ImplicitEuler implicit(field, exact);
+    const RunResult r = run_with(implicit, steps[k]);
+    distance[k] = (r.x - reference.x).lpNorm<Eigen::Infinity>();
+    table.add_row({"implicit Euler, h = " + format_number(steps[k]), format_number(distance[k], 3),
+                   format_fixed(r.newton_iterations_per_step(), 2)});
+  }
+  const double rk4_difference = (rk4_half.x - reference.x).lpNorm<Eigen::Infinity>();
+  table.add_row({"RK4, h = " + format_number(steps[1]), format_number(rk4_difference, 2), ""});
+  write_table_fragment(dir + "/rk4_agreement.md", table, command);
+  write_text_fragment(dir + "/rk4_halving_ratio.md", "Halving h divides implicit Euler's distance from RK4 by " +
+                                                         format_number(distance[0] / distance[1], 3) + ".");
 }
 
 // The report's three (K, D) with full Newton and with one Newton iteration, the stiff step's residuals, and the
 // definite (Choi & Ko) matrix against the symmetric one at K = 50.
 // `newton_for(K, D)` gives the settings of the full-Newton run at (K, D), as main checked them before any run.
 int report_runs(const Options& opt, const std::function<NewtonSettings(double, double)>& newton_for,
-                const NewtonSettings& newton, const std::string& program) {
+                const NewtonSettings& newton, const std::string& program, const std::string& command) {
   const std::string dir = opt.run.out_dir;
   OutputFile summary_file(dir + "/comparison.dat");
   std::FILE* summary = summary_file.get();
   std::fprintf(summary, "# K D newton_per_step_full newton_per_step_one factorizations_full factorizations_one "
                         "wall_full wall_one E_final_full E_final_one max_position_difference\n");
-  for (const Config& c : report_configs) {
-    SceneParams p = opt.scene;
-    p.stiffness = c.K;
-    p.damping = c.D;
+  MarkdownTable table({"K, D", "Newton iterations per step, full", "factorizations full / one", "E(2 s) full [J]",
+                       "E(2 s) one iteration [J]", "energy lost by 2 s, full",
+                       "largest position difference at 2 s [m]"},
+                      "lrrrrrr");
+  for (const ReportCase& c : report_cases) {
+    const SceneParams p = with_case(opt.scene, c);
     const NewtonSettings full = newton_for(c.K, c.D);
     const Outcome a = run_cloth(p, opt.run, full, dir + "/" + report_folder("full", c), program);
     if (a.status >= 128) return a.status;  // interrupted: the run said so; comparison.dat is not written
     NewtonSettings one = full;
-    one.max_iterations = 1;
+    one.variant = NewtonVariant::one;
     const Outcome b = run_cloth(p, opt.run, one, dir + "/" + report_folder("one", c), program);
     if (b.status >= 128) return b.status;
     const double diff = a.result.t == b.result.t ? (a.result.x - b.result.x).lpNorm<Eigen::Infinity>() : NAN;
-    const auto per_step = [](const RunResult& r) {
-      return r.steps ? static_cast<double>(r.counters.newton_iterations) / static_cast<double>(r.steps) : 0.0;
-    };
-    std::fprintf(summary, "%g %g %.4f %.4f %lld %lld %.4f %.4f %.8g %.8g %.4e\n", c.K, c.D, per_step(a.result),
-                 per_step(b.result), a.result.counters.factorizations, b.result.counters.factorizations,
+    std::fprintf(summary, "%g %g %.4f %.4f %lld %lld %.4f %.4f %.8g %.8g %.4e\n", c.K, c.D, a.result.newton_iterations_per_step(),
+                 b.result.newton_iterations_per_step(), a.result.counters.factorizations, b.result.counters.factorizations,
                  a.result.wall_seconds, b.result.wall_seconds, a.result.energy.back().energy.total(),
                  b.result.energy.back().energy.total(), diff);
     std::printf("K = %g, D = %g: full Newton %.3f iterations/step, one iteration: largest position difference at "
-                "t = %g s: %.4g m\n", c.K, c.D, per_step(a.result), a.result.t, diff);
+                "t = %g s: %.4g m\n", c.K, c.D, a.result.newton_iterations_per_step(), a.result.t, diff);
+    const double E0 = a.result.energy.front().energy.total(), E_full = a.result.energy.back().energy.total();
+    table.add_row({format_number(c.K) + ", " + format_number(c.D), format_fixed(a.result.newton_iterations_per_step(), 2),
+                   std::to_string(a.result.counters.factorizations) + " / " +
+                       std::to_string(b.result.counters.factorizations),
+                   format_fixed(E_full, 2), format_fixed(b.result.energy.back().energy.total(), 2),
+                   format_number(100 * (E0 - E_full) / E0, 2) + "%", format_number(diff, 2)});
   }
   summary_file.commit();
-  stiff_step_residuals(opt.scene, dir);
+  write_table_fragment(dir + "/report_runs.md", table, command);
+  write_stiff_step(stiff_step_residuals(opt.scene), dir, command);
   throw_if_interrupted();
-  SceneParams p = opt.scene;
-  p.stiffness = 50;
-  p.damping = 0;
+  const SceneParams p = with_K_and_D(opt.scene, 50, 0);
   NewtonSettings symmetric = newton, definite = newton;
   symmetric.treatment = StiffnessTreatment::symmetric;
   definite.treatment = StiffnessTreatment::definite;
-  iterations_per_step(p, opt.run, symmetric, dir + "/iterations_symmetric.dat");
-  iterations_per_step(p, opt.run, definite, dir + "/iterations_definite.dat");
+  const IterationSummary sym = iterations_per_step(p, opt.run, symmetric, dir + "/iterations_symmetric.dat");
+  const IterationSummary def = iterations_per_step(p, opt.run, definite, dir + "/iterations_definite.dat");
+  treatments_table(opt, newton, sym, def, dir, command);
+  if (const int status = definite_failure_transcript(p, opt.run, definite, dir, program)) return status;
+  if (const int status = measured_sentences(opt, newton, dir, program)) return status;
+  agreement_with_rk4(opt.scene, opt.run, newton, dir, command);
   return 0;
 }
 
@@ -201,16 +380,13 @@ int main(int argc, char** argv) {
   CommandLine cli("ch04_implicit_euler",
                   "Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the\n"
                   "analytic sparse Jacobian J = M - h df/dv - h^2 df/dx.");
-  cli.add_value("--linear-solver", "ldlt|ldu|cg|lu",
-                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, or Eigen's pivoting sparse LU (default: ldu "
-                "for the exact Jacobian of a damped cloth, ldlt otherwise)",
-                [&](const std::string& s) {
-                  if (s == "ldlt") newton.solver = LinearSolverKind::ldlt;
-                  else if (s == "ldu") newton.solver = LinearSolverKind::ldu;
-                  else if (s == "cg") newton.solver = LinearSolverKind::cg;
-                  else if (s == "lu") newton.solver = LinearSolverKind::lu;
-                  else throw InputError("unknown solver '" + s + "': expected ldlt, ldu, cg or lu");
-                });
+  cli.add_value("--newton", newton_variants().accepted("|"),
+                "full Newton (default), modified (a factorization kept while it converges fast, Chapter 9), or one: "
+                "Baraff & Witkin's single linearised step", [&](const std::string& s) { newton.variant = newton_variants().parse(s); });
+  cli.add_value("--linear-solver", linear_solvers().accepted("|"),
+                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, Eigen's pivoting sparse LU, or automatic "
+                "(the default: ldu for the exact Jacobian of a damped cloth, ldlt otherwise)",
+                [&](const std::string& s) { newton.solver = linear_solvers().parse(s); });
   cli.add_value("--newton-tol", "TOL", "Newton's stopping tolerance on |dv| and |r| (default 1e-8)",
                 [&](const std::string& s) {
                   const double t = parse_number(s);
@@ -218,21 +394,16 @@ int main(int argc, char** argv) {
                   newton.tolerance = t;
                 });
   cli.add_value("--newton-max-iter", "N",
-                "Newton iterations before a step fails (default 20); 1 is Baraff & Witkin's one-iteration step",
+                "full Newton's iterations before a step fails (default 20)",
                 [&](const std::string& s) {
                   const long long n = parse_integer(s);
                   if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
                   newton.max_iterations = static_cast<int>(n);
                 });
-  cli.add_value("--jacobian", "exact|symmetric|definite",
+  cli.add_value("--jacobian", stiffness_treatments().accepted("|"),
                 "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
                 "(Choi & Ko 2002; the default with cg)",
-                [&](const std::string& s) {
-                  if (s == "exact") jacobian = StiffnessTreatment::exact;
-                  else if (s == "symmetric") jacobian = StiffnessTreatment::symmetric;
-                  else if (s == "definite") jacobian = StiffnessTreatment::definite;
-                  else throw InputError("unknown Jacobian '" + s + "': expected exact, symmetric or definite");
-                });
+                [&](const std::string& s) { jacobian = stiffness_treatments().parse(s); });
   cli.add_switch("--report-runs",
                  "the report's (K, D) = (50,0), (200,0), (200,20) with full and one-iteration Newton, a stiff step's "
                  "residuals and the definite matrix at K = 50 (the chapter's figures; exit 0 even when a run fails)",
@@ -242,12 +413,10 @@ int main(int argc, char** argv) {
     const auto particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
     // The settings of a run at (K, D): the Newton matrix the solver takes unless --jacobian chose one.
     const auto newton_for = [&](double K, double D) {
-      SceneParams p = opt.scene;
-      p.stiffness = K;
-      p.damping = D;
+      const SceneParams p = with_K_and_D(opt.scene, K, D);
       NewtonSettings s = newton;
       s.treatment = jacobian ? *jacobian : default_treatment(newton.solver, Scene(p).has_damping());
-      validate(s, Scene(p));
+      check_settings(s, Scene(p));
       return s;
     };
     if (!want_report_runs) {
@@ -257,10 +426,8 @@ int main(int argc, char** argv) {
       return run_cloth(opt.scene, opt.run, settings, opt.run.out_dir, cli.program()).status;
     }
     // Every run of --report-runs is checked, with the values it uses, before the first one starts.
-    for (const Config& c : report_configs) {
-      SceneParams p = opt.scene;
-      p.stiffness = c.K;
-      p.damping = c.D;
+    for (const ReportCase& c : report_cases) {
+      const SceneParams p = with_case(opt.scene, c);
       try {
         newton_for(c.K, c.D);
       } catch (const InputError& e) {
@@ -274,6 +441,6 @@ int main(int argc, char** argv) {
                        "cg takes only the definite one: expected ldlt, ldu or lu");
     require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles), "--frames", 2);
     prepare_outputs(opt.run.out_dir, report_outputs(), run_output_names());
-    return report_runs(opt, newton_for, newton, cli.program());
+    return report_runs(opt, newton_for, newton, cli.program(), reader_command(argc, argv));
   });
 }

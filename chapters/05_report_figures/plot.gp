@@ -1,8 +1,42 @@
 # Chapter 5 figures: the report's Figures 2-7 as strain-coloured meshes, the overview grid, energy and sag against
 # time, one animation per run, and the K x D sweep as heat maps.
-# Called as: gnuplot -e "data='DIR'; plots='DIR'" plot.gp; DIR/runs.gp (written by the program) says which frame
-# of each mesh file to draw and what the labels say.
-load data.'/runs.gp'
+# Called as: gnuplot -e "data='DIR'; plots='DIR'" plot.gp. Beside the meshes and series the program writes small
+# tables that say which block of each mesh file to draw and what the labels say; they are read into arrays first.
+stats data.'/parameters.dat' using (h = $1, t_end = $2, sweep_t_end_implicit = $3, nmethods = int($4), nconfigs = int($5), \
+                                    ninstants = int($6), 0) nooutput
+nruns = nmethods * nconfigs
+# runs.dat: run name "method" "status" mesh_blocks t_reached xmin xmax ymin ymax zmin zmax (run = m * nconfigs + c)
+array run_name[nruns]; array run_method[nruns]; array run_status[nruns]; array run_blocks[nruns]
+array run_t_reached[nruns]; array run_box[6 * nruns]  # xmin, xmax, ymin, ymax, zmin, zmax per run
+do for [r = 1:nruns] {
+  stats data.'/runs.dat' every ::r-1::r-1 using (name = strcol(2), method = strcol(3), status = strcol(4), \
+    blocks = int($5), reached = $6, x0 = $7, x1 = $8, y0 = $9, y1 = $10, z0 = $11, z1 = $12, 0) nooutput
+  run_name[r] = name; run_method[r] = method; run_status[r] = status; run_blocks[r] = blocks
+  run_t_reached[r] = reached
+  b = (r - 1) * 6
+  run_box[b + 1] = x0; run_box[b + 2] = x1; run_box[b + 3] = y0; run_box[b + 4] = y1; run_box[b + 5] = z0
+  run_box[b + 6] = z1
+}
+# instants.dat: run instant mesh_block "label", row k = (run - 1) * ninstants + instant
+array instant_block[nruns * ninstants]; array instant_label[nruns * ninstants]
+do for [k = 1:nruns * ninstants] {
+  stats data.'/instants.dat' every ::k-1::k-1 using (block = int($3), label = strcol(4), 0) nooutput
+  instant_block[k] = block; instant_label[k] = label
+}
+# cases.dat: case K D log_energy_axis sag_low
+array cfg_K[nconfigs]; array cfg_D[nconfigs]; array cfg_logscale[nconfigs]; array cfg_sag_low[nconfigs]
+do for [c = 1:nconfigs] {
+  stats data.'/cases.dat' every ::c-1::c-1 using (K = $2, D = $3, logscale = int($4), low = $5, 0) nooutput
+  cfg_K[c] = K; cfg_D[c] = D; cfg_logscale[c] = logscale; cfg_sag_low[c] = low
+}
+# figures.dat: figure run "caption"
+stats data.'/figures.dat' using 1 nooutput
+nfigures = STATS_records
+array fig_number[nfigures]; array fig_run[nfigures]; array fig_caption[nfigures]
+do for [f = 1:nfigures] {
+  stats data.'/figures.dat' every ::f-1::f-1 using (number = int($1), run = int($2), caption = strcol(3), 0) nooutput
+  fig_number[f] = number; fig_run[f] = run; fig_caption[f] = caption
+}
 run_index(m, c) = (m - 1) * nconfigs + c
 mesh(r) = data.'/mesh_'.run_name[r].'.dat'
 series(r) = data.'/series_'.run_name[r].'.dat'
@@ -32,7 +66,7 @@ set_xy_tics(r) = (run_box[(r - 1) * 6 + 2] - run_box[(r - 1) * 6 + 1] > 5 || run
 
 # ---- one sheet per report figure: the cloth at t = 0.05 T, 0.25 T, 0.5 T, T ----
 set terminal pngcairo size 1300,1000 enhanced font "Sans,11"
-do for [f = 1:6] {
+do for [f = 1:nfigures] {
   r = fig_run[f]
   eval set_xy_tics(r)
   set output sprintf("%s/ch05_figure%d.png", plots, fig_number[f])
@@ -65,8 +99,7 @@ unset multiplot
 set colorbox
 
 # ---- energy and sag against time, one panel per configuration, every method ----
-reset
-load data.'/runs.gp'
+reset  # settings only: the arrays read above stay
 set terminal pngcairo size 1500,520 enhanced font "Sans,11"
 set grid
 set key top left
@@ -98,7 +131,6 @@ set yrange [*:*]
 
 # ---- one small animation per run: the mesh every T/20, then the last sane frame of a diverged run ----
 reset
-load data.'/runs.gp'
 sc(s) = asinh(s / 0.05)
 set palette defined (sc(-1) "#08306b", sc(-0.1) "#4292c6", 0 "#a0a0a0", sc(0.1) "#fec44f", sc(1) "#ec7014", \
                      sc(10) "#cb181d", sc(100) "#3f007d")
@@ -132,7 +164,6 @@ do for [r = 1:nmethods * nconfigs] {
 
 # ---- the sweep: one heat map per method over K x D ----
 reset
-load data.'/runs.gp'
 sweep = data.'/sweep.dat'
 Klabels = "10 25 50 100 200 500 1000"
 Dlabels = "0 1 5 20"
@@ -152,7 +183,7 @@ set palette defined (-8 "#f7fbff", -6 "#c6dbef", -4 "#6baed6", -2 "#fdae6b", 0 "
 
 set terminal pngcairo size 1400,900 enhanced font "Sans,11"
 set output plots.'/ch05_sweep_gain.png'
-set multiplot layout 2,2 title sprintf("Energy gain max_t (E(t) - E(0))/|E(0)| over the K x D sweep, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 The exact solution never gains energy (it conserves it for D = 0 and loses it for D > 0): any gain is the method's error. Grey: the run diverged or its Newton iteration failed.}", h, t_end, sweep_t_end_implicit) font ",12"
+set multiplot layout 2,2 title sprintf("Energy gain max_t (E(t) - E(0))/|E(0)| over the K x D sweep, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 The exact solution never gains energy (it conserves it for D = 0 and loses it for D > 0): any gain is the method's error. Grey: the run diverged or a step failed.}", h, t_end, sweep_t_end_implicit) font ",12"
 set cbrange [-8:2]
 set cbtics ("≤1e-8" -8, "1e-6" -6, "1e-4" -4, "0.01" -2, "1" 0, "100" 2)
 unset cblabel
@@ -160,12 +191,12 @@ do for [m = 0:3] {
   set title sweep_title[m + 1]
   plot sweep index m using 2:3:(column(6) == 0 ? gain_colour(column(8)) : NaN) with image, \
        '' index m using (column(6) != 0 ? column(2) : NaN):3:(0.5):(0.5) with boxxyerror fs solid 1.0 noborder lc rgb "#909090", \
-       '' index m using 2:3:(column(6) == 1 ? sprintf("diverged\n%.2f s", column(7)) : column(6) == 2 ? sprintf("Newton failed\n%.2f s", column(7)) : column(8) == 0 ? "0" : sprintf("%.1e", column(8))) with labels font ",9"
+       '' index m using 2:3:(column(6) != 0 ? sprintf("%s\n%.2f s", strcol(13), column(7)) : column(8) == 0 ? "0" : sprintf("%.1e", column(8))) with labels font ",9"
 }
 unset multiplot
 
 set output plots.'/ch05_sweep_final.png'
-set multiplot layout 2,2 title sprintf("Energy at the end relative to the start, (E(T) - E(0))/|E(0)|, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 Negative: energy lost (dampers, or the method's numerical damping); positive: energy gained. Grey: diverged or Newton failed.}", h, t_end, sweep_t_end_implicit) font ",12"
+set multiplot layout 2,2 title sprintf("Energy at the end relative to the start, (E(T) - E(0))/|E(0)|, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 Negative: energy lost (dampers, or the method's numerical damping); positive: energy gained. Grey: diverged or a step failed.}", h, t_end, sweep_t_end_implicit) font ",12"
 set palette defined (-1 "#08519c", -0.3 "#6baed6", 0 "#f7f7f7", 0.3 "#fc9272", 1 "#a50f15")
 set cbrange [-1:1]
 set cbtics ("≤ -1" -1, "-0.5" -0.5, "0" 0, "0.5" 0.5, "≥ 1" 1)
@@ -174,6 +205,6 @@ do for [m = 0:3] {
   set title sweep_title[m + 1]
   plot sweep index m using 2:3:(column(6) == 0 ? (column(9) < -1 ? -1 : column(9) > 1 ? 1 : column(9)) : NaN) with image, \
        '' index m using (column(6) != 0 ? column(2) : NaN):3:(0.5):(0.5) with boxxyerror fs solid 1.0 noborder lc rgb "#909090", \
-       '' index m using 2:3:(column(6) == 1 ? sprintf("diverged\n%.2f s", column(7)) : column(6) == 2 ? sprintf("Newton failed\n%.2f s", column(7)) : abs(column(9)) < 0.01 ? sprintf("%.1e", column(9)) : abs(column(9)) >= 10 ? sprintf("%.3g", column(9)) : sprintf("%.2f", column(9))) with labels font ",9"
+       '' index m using 2:3:(column(6) != 0 ? sprintf("%s\n%.2f s", strcol(13), column(7)) : abs(column(9)) < 0.01 ? sprintf("%.1e", column(9)) : abs(column(9)) >= 10 ? sprintf("%.3g", column(9)) : sprintf("%.2f", column(9))) with labels font ",9"
 }
 unset multiplot

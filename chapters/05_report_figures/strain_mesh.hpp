@@ -8,18 +8,18 @@
 #include <cmath>
 #include <cstdio>
 
-namespace cloth::ch05 {
+namespace ch05 {
 
 /// Writes one gnuplot block: for every spring of `family`, its two endpoints as `x y z strain` lines followed by
 /// a blank line. `positions` holds every particle in grid order (a Frame's layout, 3 per particle); springs name
 /// slots, so each endpoint is looked up through the scene's slot -> particle map. The block ends with two blank
 /// lines so that consecutive blocks are separate gnuplot `index` entries. `t` goes into a comment line.
-inline void write_strain_block(std::FILE* out, const Scene& scene, const Eigen::VectorXd& positions, double t,
-                               SpringFamily family) {
+inline void write_strain_block(std::FILE* out, const cloth::Scene& scene, const Eigen::VectorXd& positions, double t,
+                               cloth::SpringFamily family) {
   std::fprintf(out, "# t = %.6g\n", t);
-  const SpringRange r = scene.springs().family[static_cast<int>(family)];
+  const cloth::SpringRange r = scene.springs().family[static_cast<int>(family)];
   for (int k = r.begin; k < r.end; ++k) {
-    const Spring& s = scene.springs().springs[static_cast<std::size_t>(k)];
+    const cloth::Spring& s = scene.springs().springs[static_cast<std::size_t>(k)];
     const Eigen::Vector3d p = positions.segment<3>(3 * scene.particle_of_slot(s.p));
     const Eigen::Vector3d q = positions.segment<3>(3 * scene.particle_of_slot(s.q));
     const double strain = ((p - q).norm() - s.rest_length) / s.rest_length;
@@ -30,9 +30,9 @@ inline void write_strain_block(std::FILE* out, const Scene& scene, const Eigen::
 }
 
 /// Largest |strain| over the springs of a configuration (all families), for the summary table.
-inline double max_abs_strain(const Scene& scene, const Eigen::VectorXd& positions) {
+inline double max_abs_strain(const cloth::Scene& scene, const Eigen::VectorXd& positions) {
   double worst = 0;
-  for (const Spring& s : scene.springs().springs) {
+  for (const cloth::Spring& s : scene.springs().springs) {
     const Eigen::Vector3d p = positions.segment<3>(3 * scene.particle_of_slot(s.p));
     const Eigen::Vector3d q = positions.segment<3>(3 * scene.particle_of_slot(s.q));
     const double strain = std::abs(((p - q).norm() - s.rest_length) / s.rest_length);
@@ -41,4 +41,4 @@ inline double max_abs_strain(const Scene& scene, const Eigen::VectorXd& position
   return worst;
 }
 
-}  // namespace cloth::ch05
+}  // namespace ch05

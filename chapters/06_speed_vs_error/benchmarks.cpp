@@ -4,9 +4,8 @@
 #include "hand_rk4.hpp"
 #include "timing.hpp"
 
-#include "integrators/explicit_euler.hpp"
-#include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/implicit_euler.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
@@ -29,16 +28,20 @@ constexpr int trajectory_length = 16;
 // springs compressed and stretched, the states a solver meets in a run, each one step after the other.
 std::vector<std::pair<Vector, Vector>> folded_trajectory(const Scene& scene) {
   ForceField field(scene);
-  ExplicitRungeKutta rk4(field, builtin_tableaus()[4]);
+  const auto rk4 = make_stepper("rk4", field);
   RunSettings run;
   run.dt = 1e-3;
   run.t_end = 0.5;
-  const RunResult r = simulate(rk4, run, false);
+  const RunResult r = simulate(*rk4, run, false);
   std::vector<std::pair<Vector, Vector>> states{{r.x, r.v}};
-  ImplicitEuler ie(field, {1e-10, 20, LinearSolverKind::ldlt, StiffnessTreatment::symmetric});
+  MethodSettings settings;
+  settings.newton.tolerance = 1e-10;
+  settings.newton.solver = LinearSolverKind::ldlt;
+  settings.newton.treatment = StiffnessTreatment::symmetric;
+  const auto ie = make_stepper("implicit_euler", field, settings);
   Vector x = r.x, v = r.v;
   while (static_cast<int>(states.size()) < trajectory_length) {
-    ie.step(h, x, v);
+    ie->step(h, x, v);
     states.emplace_back(x, v);
   }
   return states;
@@ -180,7 +183,13 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
   const auto newton_iteration = [&](LinearSolverKind kind, const char* name,
                                     StiffnessTreatment treatment = StiffnessTreatment::definite) {
     ForceField f2(scene);
-    ImplicitEuler ie(f2, {1e-8, 1, kind, treatment});
+    MethodSettings one;  // Baraff & Witkin's single iteration: one assembly, factorization and solve per step
+    one.newton.tolerance = 1e-8;
+    one.newton.variant = NewtonVariant::one;
+    one.newton.solver = kind;
+    one.newton.treatment = treatment;
+    const auto ie_stepper = make_stepper("implicit_euler", f2, one);
+    Stepper& ie = *ie_stepper;
     Vector xs = x, vs = v;
     std::size_t i = 0;
     const auto next = [&] {
@@ -203,11 +212,12 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
   newton_iteration(LinearSolverKind::lu, "newton_iteration_sparselu_exact", StiffnessTreatment::exact);
   newton_iteration(LinearSolverKind::cg, "newton_iteration_cg_warm");
 
-  // Runge-Kutta: the generic tableau engine against RK4 written out by hand, on the same forces.
+  // Runge-Kutta: the generic tableau engine against RK4 and explicit Euler written out by hand, on the same forces.
   {
-    ExplicitRungeKutta generic(field, builtin_tableaus()[4]);
+    const auto generic = make_stepper("rk4", field);
     HandRK4 hand(field);
-    ExplicitEuler euler(field);
+    const auto euler = make_stepper("explicit_euler", field);
+    HandExplicitEuler hand_euler(field);
     Vector xs = x, vs = v;
     const auto time_step = [&](Stepper& s) {
       return median_seconds(
@@ -219,11 +229,14 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
           runs, 5, 50);
     };
     // Interleaved, twice each, so that a slow spell of the machine favours neither; the faster of the two kept.
-    const Seconds g1 = time_step(generic), h1 = time_step(hand), g2 = time_step(generic), h2 = time_step(hand);
+    const Seconds g1 = time_step(*generic), h1 = time_step(hand), g2 = time_step(*generic), h2 = time_step(hand);
     const auto faster = [](Seconds a, Seconds b) { return a.cpu < b.cpu ? a : b; };
     out.push_back(make("rk4_step_tableau", faster(g1, g2), 4, "rhs_evaluations"));
     out.push_back(make("rk4_step_hand_unrolled", faster(h1, h2), 4, "rhs_evaluations"));
-    out.push_back(make("explicit_euler_step", time_step(euler), 1, "rhs_evaluations"));
+    const Seconds e1 = time_step(*euler), u1 = time_step(hand_euler), e2 = time_step(*euler),
+                  u2 = time_step(hand_euler);
+    out.push_back(make("explicit_euler_step", faster(e1, e2), 1, "rhs_evaluations"));
+    out.push_back(make("explicit_euler_step_hand_written", faster(u1, u2), 1, "rhs_evaluations"));
   }
   return out;
 }

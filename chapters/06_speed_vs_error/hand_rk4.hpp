@@ -1,5 +1,6 @@
-// The classical RK4 step written out by hand on the same ForceField: the yardstick the generic tableau engine
-// (integrators/explicit_runge_kutta) is timed against in Chapter 6. Not used for anything else.
+// The classical RK4 step and the explicit Euler step written out by hand on the same ForceField: the yardsticks
+// the generic tableau engine (integrators/explicit_runge_kutta) is timed against in Chapter 6. Not used for
+// anything else.
 #pragma once
 
 #include "integrators/stepper.hpp"
@@ -9,7 +10,7 @@ namespace ch06 {
 class HandRK4 final : public cloth::Stepper {
  public:
   explicit HandRK4(cloth::ForceField& field)
-      : Stepper(field), xs_(field.dof_count()), vs_(field.dof_count()), a1_(field.dof_count()),
+      : Stepper(field), xs_(field.dof_count()), a1_(field.dof_count()),
         a2_(field.dof_count()), a3_(field.dof_count()), a4_(field.dof_count()), v2_(field.dof_count()),
         v3_(field.dof_count()), v4_(field.dof_count()) {}
   [[nodiscard]] std::string name() const override { return "rk4_hand"; }
@@ -33,7 +34,25 @@ class HandRK4 final : public cloth::Stepper {
   }
 
  private:
-  cloth::Vector xs_, vs_, a1_, a2_, a3_, a4_, v2_, v3_, v4_;
+  cloth::Vector xs_, a1_, a2_, a3_, a4_, v2_, v3_, v4_;
+};
+
+/// Explicit Euler as Chapter 2 writes it: x += h v, v += h a(x, v).
+class HandExplicitEuler final : public cloth::Stepper {
+ public:
+  explicit HandExplicitEuler(cloth::ForceField& field) : Stepper(field), a_(field.dof_count()) {}
+  [[nodiscard]] std::string name() const override { return "explicit_euler_hand"; }
+  bool step(double h, cloth::Vector& x, cloth::Vector& v) override {
+    field_.acceleration(x, v, a_);
+    x += h * v;
+    v += h * a_;
+    ++counters_.rhs_evaluations;
+    ++counters_.steps;
+    return true;
+  }
+
+ private:
+  cloth::Vector a_;
 };
 
 }  // namespace ch06

@@ -24,9 +24,7 @@ int main(int argc, char** argv) {
     prepare_output_dir(opt.run.out_dir);
     const std::string dir = opt.run.out_dir;
 
-    // [benchmarks]
     const auto bench = ch06::run_benchmarks(opt.scene, quick ? 5 : 9);
-    // [benchmarks]
     {
       std::FILE* out = std::fopen((dir + "/benchmarks.dat").c_str(), "w");
       std::fprintf(out, "# quantity wall_us cpu_us count count_unit  (grid %dx%d, K %g, D %g, folded states from t = 0.5 s)\n",

@@ -3,7 +3,7 @@
 // over a short horizon (before the fold) and a long one (through it), with no reference solution needed.
 #include "studies.hpp"
 
-#include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/method_registry.hpp"
 
 #include <cmath>
 #include <string>
@@ -23,7 +23,7 @@ using namespace cloth;
 void local_error_along_trajectory(const SceneParams& base, double T, double h, const Sink& sink) {
   const Scene scene(base);
   ForceField field(scene);
-  ExplicitRungeKutta rk4(field, builtin_tableaus()[4]);
+  const auto rk4 = make_stepper("rk4", field);
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   Vector x_full(x.size()), v_full(x.size()), x_half(x.size()), v_half(x.size());
   Vector all(3 * scene.particle_count());
@@ -36,10 +36,10 @@ void local_error_along_trajectory(const SceneParams& base, double T, double h, c
   long long jump_steps = 0;
   for (long long k = 0; k < steps; ++k) {
     x_full = x, v_full = v;
-    rk4.step(h, x_full, v_full);
+    rk4->step(h, x_full, v_full);
     x_half = x, v_half = v;
-    rk4.step(0.5 * h, x_half, v_half);
-    rk4.step(0.5 * h, x_half, v_half);
+    rk4->step(0.5 * h, x_half, v_half);
+    rk4->step(0.5 * h, x_half, v_half);
     const double local = 16.0 / 15.0 * max_particle_distance(x_full, x_half);
     const double local_velocity = 16.0 / 15.0 * max_particle_distance(v_full, v_half);
     const double t = static_cast<double>(k) * h;
@@ -72,7 +72,7 @@ void observed_orders(const SceneParams& base, const std::vector<double>& horizon
     for (const double T : horizons) {
       std::fprintf(f, "# %s T = %g\n", method, T);
       ForceField field(scene);
-      auto stepper = make_method(method, field);
+      auto stepper = make_stepper(method, field);
       Vector previous;
       double previous_difference = 0;
       for (int k = k_min; k <= k_max + 1; ++k) {

@@ -3,11 +3,10 @@
 
 #include "timing.hpp"
 
-#include "integrators/explicit_euler.hpp"
-#include "integrators/explicit_runge_kutta.hpp"
+#include "base/input_error.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/simulate.hpp"
-#include "integrators/symplectic_euler.hpp"
+#include "model/report_cases.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -19,19 +18,16 @@ using namespace cloth;
 
 namespace {
 
-const ButcherTableau& tableau(const std::string& name) {
-  for (const ButcherTableau& t : builtin_tableaus())
-    if (t.name == name) return t;
-  return builtin_tableaus().front();
+// The implicit rows' settings: CG needs the definite matrix; the direct path is Chapter 4's default, the exact
+// Jacobian with the block factorization it calls for (LDL^T when undamped, LDU when the damper makes it
+// non-symmetric).
+MethodSettings implicit_settings(bool cg, NewtonVariant variant) {
+  MethodSettings s;
+  s.newton.solver = cg ? LinearSolverKind::cg : LinearSolverKind::automatic;
+  s.newton.treatment = cg ? StiffnessTreatment::definite : StiffnessTreatment::exact;
+  s.newton.variant = variant;
+  return s;
 }
-
-cloth::SceneParams with(const SceneParams& base, double K, double D) {
-  SceneParams p = base;
-  p.stiffness = K;
-  p.damping = D;
-  return p;
-}
-
 
 }  // namespace
 
@@ -60,27 +56,27 @@ ShortestSpring shortest_spring(const Scene& scene, const Vector& x, Vector& all)
   return out;
 }
 
-const std::vector<std::string>& sweep_methods() {
-  static const std::vector<std::string> names = {
-      "explicit_euler",      "symplectic_euler",  "heun",
-      "rk4",                 "rule38",            "implicit_euler_direct",
-      "implicit_euler_cg",   "implicit_euler_1newton_direct", "implicit_euler_1newton_cg"};
-  return names;
+const std::vector<SweepMethod>& sweep_methods() {
+  static const std::vector<SweepMethod> rows = {
+      {"explicit_euler", "explicit_euler", {}},
+      {"symplectic_euler", "symplectic_euler", {}},
+      {"heun", "heun", {}},
+      {"rk4", "rk4", {}},
+      {"rule38", "rule38", {}},
+      {"implicit_euler_direct", "implicit_euler", implicit_settings(false, NewtonVariant::full)},
+      {"implicit_euler_cg", "implicit_euler", implicit_settings(true, NewtonVariant::full)},
+      {"implicit_euler_1newton_direct", "implicit_euler", implicit_settings(false, NewtonVariant::one)},
+      {"implicit_euler_1newton_cg", "implicit_euler", implicit_settings(true, NewtonVariant::one)}};
+  return rows;
 }
 
-std::unique_ptr<Stepper> make_method(const std::string& name, ForceField& field) {
-  if (name == "explicit_euler") return std::make_unique<ExplicitEuler>(field);
-  if (name == "symplectic_euler") return std::make_unique<SymplecticEuler>(field);
-  if (name == "heun" || name == "rk4" || name == "rule38")
-    return std::make_unique<ExplicitRungeKutta>(field, tableau(name));
-  NewtonSettings s;
-  const bool cg = name.find("_cg") != std::string::npos;
-  // CG needs the definite matrix; the direct path is Chapter 4's default, the exact Jacobian with the block
-  // factorization it calls for (LDL^T when undamped, LDU when the damper makes it non-symmetric).
-  s.solver = cg ? LinearSolverKind::cg : LinearSolverKind::automatic;
-  s.treatment = cg ? StiffnessTreatment::definite : StiffnessTreatment::exact;
-  if (name.find("1newton") != std::string::npos) s.max_iterations = 1;
-  return std::make_unique<ImplicitEuler>(field, s);
+const SweepMethod& sweep_method(const std::string& label) {
+  std::string labels;
+  for (const SweepMethod& m : sweep_methods()) {
+    if (m.label == label) return m;
+    labels += (labels.empty() ? "" : ", ") + m.label;
+  }
+  throw InputError("unknown sweep method '" + label + "': expected one of " + labels);
 }
 
 Trajectory run_sampled(Stepper& stepper, double T, long long steps, int samples) {
@@ -116,7 +112,7 @@ Trajectory run_sampled(Stepper& stepper, double T, long long steps, int samples)
 void near_zero_springs(const SceneParams& base, double T, double h, const Sink& sink) {
   const Scene scene(base);
   ForceField field(scene);
-  ExplicitRungeKutta rk4(field, tableau("rk4"));
+  const auto rk4 = make_stepper("rk4", field);
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   Vector all(3 * scene.particle_count());
   const auto steps = static_cast<long long>(std::llround(T / h));
@@ -125,7 +121,7 @@ void near_zero_springs(const SceneParams& base, double T, double h, const Sink& 
   int spring_min = -1;
   const auto& springs = scene.springs();
   for (long long k = 0; k <= steps; ++k) {
-    if (k > 0) rk4.step(h, x, v);
+    if (k > 0) rk4->step(h, x, v);
     const auto [worst, which] = shortest_spring(scene, x, all);
     const Spring& sp = springs.springs[static_cast<std::size_t>(which)];
     int family = 0;
@@ -157,9 +153,9 @@ void sensitivity(const SceneParams& base, const std::vector<Config>& configs, do
   std::FILE* f = open(sink, "sensitivity.dat", "# config K D t amplification  (blocks by config)");
   const double delta = 1e-12;
   for (const Config& c : configs) {
-    const Scene scene(with(base, c.K, c.D));
+    const Scene scene(with_K_and_D(base, c.K, c.D));
     ForceField fa(scene), fb(scene);
-    ExplicitRungeKutta a(fa, tableau("rk4")), b(fb, tableau("rk4"));
+    const auto a = make_stepper("rk4", fa), b = make_stepper("rk4", fb);
     Vector xa = scene.initial_positions(), va = scene.initial_velocities();
     Vector xb = xa, vb = va;
     xb[3 * (scene.free_count() / 2) + 2] += delta;
@@ -168,7 +164,7 @@ void sensitivity(const SceneParams& base, const std::vector<Config>& configs, do
     const long long every = std::max(1LL, steps / 200);
     std::fprintf(f, "# %s\n", c.name.c_str());
     for (long long k = 0; k <= steps; ++k) {
-      if (k > 0) a.step(h, xa, va), b.step(h, xb, vb);
+      if (k > 0) a->step(h, xa, va), b->step(h, xb, vb);
       if (k % every == 0) {
         const double amp = max_particle_distance(xa, xb) / delta;
         std::fprintf(f, "%s %g %g %.6f %.6e\n", c.name.c_str(), c.K, c.D, k * h, amp);
@@ -186,12 +182,12 @@ void sensitivity(const SceneParams& base, const std::vector<Config>& configs, do
 // twice as many. Their largest sampled difference is its credential: every error plotted must exceed it 100x.
 Trajectory reference(const SceneParams& base, const Config& c, int samples, int k_ref, const Sink& sink,
                      double& agreement) {
-  const Scene scene(with(base, c.K, c.D));
+  const Scene scene(with_K_and_D(base, c.K, c.D));
   ForceField f1(scene), f2(scene);
-  ExplicitRungeKutta rk4(f1, tableau("rk4")), rule38(f2, tableau("rule38"));
+  const auto rk4 = make_stepper("rk4", f1), rule38 = make_stepper("rule38", f2);
   const long long n = 1LL << k_ref;
-  const Trajectory a = run_sampled(rk4, c.T, n, samples);
-  const Trajectory b = run_sampled(rule38, c.T, 2 * n, samples);
+  const Trajectory a = run_sampled(*rk4, c.T, n, samples);
+  const Trajectory b = run_sampled(*rule38, c.T, 2 * n, samples);
   agreement = 0;
   for (std::size_t j = 0; j < a.x.size(); ++j) agreement = std::max(agreement, max_particle_distance(a.x[j], b.x[j]));
   std::printf("reference %s (K %g, D %g, T %g): rk4 with h = T/2^%d and rule38 with h = T/2^%d agree to %.2e m\n",
@@ -205,17 +201,18 @@ Trajectory reference(const SceneParams& base, const Config& c, int samples, int 
 // [work_precision]
 void work_precision(const SceneParams& base, const Config& c, const Trajectory& ref, int samples, int k_min,
                     int k_max, double max_seconds, int runs, double ref_agreement, const Sink& sink) {
-  const Scene scene(with(base, c.K, c.D));
+  const Scene scene(with_K_and_D(base, c.K, c.D));
   std::FILE* f = open(sink, "wp_" + c.name + ".dat",
                       "# method h steps seconds err_max_T err_rms rhs assemblies factorizations cg_iterations "
                       "newton_iterations  (blocks by method)");
-  for (const std::string& method : sweep_methods()) {
+  for (const SweepMethod& row : sweep_methods()) {
+    const std::string& method = row.label;
     std::fprintf(f, "# %s\n", method.c_str());
     for (int k = k_min; k <= k_max; ++k) {
       const long long steps = 1LL << k;
       const double h = c.T / static_cast<double>(steps);
       ForceField field(scene);
-      auto stepper = make_method(method, field);
+      auto stepper = row.stepper(field);
       // The error run (also the warm-up of the timing runs).
       const auto t0 = std::chrono::steady_clock::now();
       Trajectory traj = run_sampled(*stepper, c.T, steps, samples);
@@ -230,7 +227,7 @@ void work_precision(const SceneParams& base, const Config& c, const Trajectory& 
       double err_T = max_particle_distance(traj.x.back(), ref.x.back()), sum2 = 0;
       long long terms = 0;
       for (std::size_t j = 1; j < traj.x.size(); ++j) {
-        sum2 += (traj.x[j] - ref.x[j]).squaredNorm() / 1.0;
+        sum2 += (traj.x[j] - ref.x[j]).squaredNorm();
         terms += traj.x[j].size() / 3;
       }
       const double err_rms = std::sqrt(sum2 / static_cast<double>(terms));
@@ -244,13 +241,12 @@ void work_precision(const SceneParams& base, const Config& c, const Trajectory& 
       const int n_runs = first > max_seconds / 5 ? 1 : runs;
       const Seconds t = n_runs == 1 ? Seconds{first, first} : median_seconds([&] {
         ForceField fresh(scene);
-        auto s = make_method(method, fresh);
+        auto s = row.stepper(fresh);
         run_sampled(*s, c.T, steps, samples);
       }, n_runs, 0);
-      const auto per = [&](long long v) { return static_cast<double>(v); };
-      std::fprintf(f, "%s %.6e %lld %.6e %.6e %.6e %g %g %g %g %g\n", method.c_str(), h, steps, t.wall, err_T, err_rms,
-                   per(counters.rhs_evaluations), per(counters.jacobian_assemblies), per(counters.factorizations),
-                   per(counters.cg_iterations), per(counters.newton_iterations));
+      std::fprintf(f, "%s %.6e %lld %.6e %.6e %.6e %lld %lld %lld %lld %lld\n", method.c_str(), h, steps, t.wall, err_T,
+                   err_rms, counters.rhs_evaluations, counters.jacobian_assemblies, counters.factorizations,
+                   counters.cg_iterations, counters.newton_iterations);
       std::fprintf(sink.table, "wp %s %s %.6e %lld %.6e %.6e %.6e %lld %lld %lld %lld %lld ok\n", c.name.c_str(),
                    method.c_str(), h, steps, t.wall, err_T, err_rms, counters.rhs_evaluations,
                    counters.jacobian_assemblies, counters.factorizations, counters.cg_iterations,
@@ -280,8 +276,8 @@ void scaling(const SceneParams& base, const std::vector<int>& sizes, int runs, d
       p.grid.M = p.grid.N = size;
       const Scene scene(p);
       ForceField field(scene);
-      auto stepper = make_method(method, field);
-      const bool implicit = method.find("implicit") != std::string::npos;
+      auto stepper = sweep_method(method).stepper(field);
+      const bool implicit = find_method(sweep_method(method).method).family == MethodFamily::implicit_runge_kutta;
       const double h = implicit ? 0.01 : 1e-3;
       // Start from the state at t = 0.05 s, where the cloth is moving and stretched.
       Vector x = scene.initial_positions(), v = scene.initial_velocities();
@@ -291,12 +287,10 @@ void scaling(const SceneParams& base, const std::vector<int>& sizes, int runs, d
       auto* ie = dynamic_cast<ImplicitEuler*>(stepper.get());
       if (ie) ie->reset_timing();
       stepper->reset_counters();
-      int calls = 0;
       const Seconds t = median_seconds(
           [&] {
             x = x0, v = v0;
             for (int k = 0; k < steps; ++k) stepper->step(h, x, v);
-            ++calls;
           },
           runs, 1);
       const double per_step = t.wall / steps;

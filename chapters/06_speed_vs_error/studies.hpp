@@ -2,8 +2,8 @@
 // solution and its credentials, the work-precision sweep, and the cost of a step against the grid size.
 #pragma once
 
+#include "integrators/method_registry.hpp"
 #include "model/scene.hpp"
-#include "integrators/stepper.hpp"
 
 #include <cstdio>
 #include <functional>
@@ -30,10 +30,20 @@ struct Trajectory {
 /// failed step or diverged state (ok = false, message says where).
 Trajectory run_sampled(cloth::Stepper& stepper, double T, long long steps, int samples);
 
-/// A method of the sweep by its row name (explicit_euler, symplectic_euler, heun, rk4, rule38,
-/// implicit_euler_direct, implicit_euler_cg, implicit_euler_1newton_direct, implicit_euler_1newton_cg).
-std::unique_ptr<cloth::Stepper> make_method(const std::string& name, cloth::ForceField& field);
-const std::vector<std::string>& sweep_methods();
+/// A row of the sweep: a method of the registry with the settings it runs with, under the label the tables and
+/// figures use (the implicit rows differ only in their Newton settings).
+struct SweepMethod {
+  std::string label;   ///< explicit_euler, ..., implicit_euler_direct, implicit_euler_1newton_cg
+  std::string method;  ///< its registry name
+  cloth::MethodSettings settings;
+  [[nodiscard]] std::unique_ptr<cloth::Stepper> stepper(cloth::ForceField& field) const {
+    return cloth::make_stepper(method, field, settings);
+  }
+};
+/// The rows of the work-precision sweep, in the order of its figures.
+const std::vector<SweepMethod>& sweep_methods();
+/// The row labelled `label`; throws InputError listing the labels when there is none.
+const SweepMethod& sweep_method(const std::string& label);
 
 /// Where the program writes: the one machine-readable table (speed_vs_error.dat) and the per-figure files.
 struct Sink {

@@ -42,26 +42,29 @@ plot $Ceuler w l lw 2 lc rgb "#d62728" t "explicit Euler (inside)", \
      $Csymplectic w l lw 2 lc rgb "#2ca02c" t "symplectic Euler, conjugate-pair modes (inside)"
 
 set output plots.'/ch07_spectrum.png'
-set terminal pngcairo size 1500,620 enhanced font "Sans,12"
+set terminal pngcairo size 1200,600 enhanced font "Sans,11"
 set size noratio
-set multiplot layout 1,3 title "Spectrum of the linearised 20 x 20 cloth times h = 0.01 s over the stability regions (projected damper)"
+set multiplot layout 1,3 title "h{/Symbol l} of the linearised cloth, h = 0.01 s, over the stability regions (K in N/m, D in N s/m)"
 set key outside bottom center horizontal maxrows 4 font ",10"
+# The region boundaries are drawn thin and half transparent, and the eigenvalues over them: undamped, every
+# eigenvalue lies on the imaginary axis, which is also part of symplectic Euler's boundary. Rest-state
+# eigenvalues are large open circles, sagged ones small filled dots, so that both show where they coincide.
 do for [c in "K50_D0 K200_D0 K200_D20"] {
-  if (c eq "K200_D20") { set xrange [-3:0.3]; set yrange [-1.7:1.7] } else { set xrange [-0.25:0.1]; set yrange [-0.6:0.6] }
+  if (c eq "K200_D20") { set xrange [-3:0.3]; set yrange [-1.7:1.7] } else { set xrange [-0.12:0.12]; set yrange [-0.6:0.6] }
   K = (c eq "K50_D0") ? "50" : "200"
   D = (c eq "K200_D20") ? "20" : "0"
-  set title "K = ".K." N/m, D = ".D." N s/m".((c eq "K200_D20") ? " (sagged: dominant eigenvalue only)" : "")
-  plot $Ceuler w l lw 2 lc rgb "#d62728" t "explicit Euler", \
-       $Crk4 w l lw 2 lc rgb "#1f77b4" t "rk4", \
-       $Csymplectic w l lw 2 lc rgb "#2ca02c" t "symplectic Euler", \
-       $Cimplicit w l lw 2 dt 2 lc rgb "black" t "implicit Euler boundary", \
-       data.'/spectrum_rest_'.c.'.dat' u 1:2 w p pt 6 ps 0.8 lc rgb "#555555" t "h{/Symbol l}, rest state", \
-       data.'/spectrum_sagged_'.c.'.dat' u 1:2 w p pt 2 ps 1.0 lc rgb "#e377c2" t "h{/Symbol l}, sagged equilibrium"
+  set title "K = ".K.", D = ".D
+  plot $Ceuler w l lw 1.5 lc rgb "#60d62728" t "explicit Euler", \
+       $Crk4 w l lw 1.5 lc rgb "#601f77b4" t "rk4", \
+       $Csymplectic w l lw 1.5 lc rgb "#602ca02c" t "symplectic Euler", \
+       $Cimplicit w l lw 1.5 dt 2 lc rgb "#60000000" t "implicit Euler boundary", \
+       data.'/spectrum_rest_'.c.'.dat' u 1:2 w p pt 6 ps 1.3 lw 1.5 lc rgb "#444444" t "h{/Symbol l}, rest state", \
+       data.'/spectrum_sagged_'.c.'.dat' u 1:2 w p pt 7 ps 0.6 lc rgb "#c51b7d" t "h{/Symbol l}, sagged equilibrium"
 }
 unset multiplot
 
 set output plots.'/ch07_hmax.png'
-set terminal pngcairo size 1600,820 enhanced font "Sans,12"
+set terminal pngcairo size 1200,760 enhanced font "Sans,11"
 set size noratio
 set logscale xy
 set format x "10^{%L}"
@@ -79,10 +82,10 @@ mid(lo, hi) = (lo > 0 && hi > 0) ? sqrt(lo * hi) : (lo > 0 ? lo : 1/0)
 array meth[4] = ["explicit_euler", "symplectic_euler", "heun", "rk4"]
 array label[4] = ["explicit Euler", "symplectic Euler", "heun", "rk4"]
 array col[4] = ["#d62728", "#2ca02c", "#ff7f0e", "#1f77b4"]
-set multiplot layout 1,2 title "h_{max} of the report scene: predicted from the spectrum (lines) and measured by bisection over 2 s (points with their bracket); squares: strict, from the sagged dominant eigenvalue"
+set multiplot layout 1,2 title "h_{max}: predicted (lines: rest state; squares: six largest sagged eigenvalues) and measured over 2 s (points, bracket)"
 do for [Dv in "0 20"] {
   d = real(Dv)
-  set title "D = ".Dv." N s/m (20 x 20, corners pinned, v_0 = -20 m/s)"
+  set title "D = ".Dv." N s/m"
   plot for [k=1:4] P u (sel(meth[k], d) ? $1 : 1/0):($4 > 0.01 * $5 ? $4 : 1/0) w l lw 2 lc rgb col[k] t label[k]." predicted (rest)", \
        for [k=1:4] S u (sel(meth[k], d) ? $1 : 1/0):($6 > 0.01 * $5 ? $6 : 1/0) w p pt 4 ps 1.3 lc rgb col[k] notitle, \
        for [k=1:3:2] P u (sel(meth[k], d) ? $1 : 1/0):5 w l dt 3 lw 2 lc rgb col[k] t label[k].": 2-s energy doubling (rest)", \

@@ -1,26 +1,19 @@
 // The fastest rates of the cloth that limit explicit methods (Chapters 2, 3 and 5): the highest angular frequency
-// of the springs and the fastest damping rate, each the largest eigenvalue of a symmetric matrix found by power
-// iteration on the model's own sparse Jacobians.
+// of the springs and the fastest damping rate, each the largest eigenvalue of a symmetric matrix, found by the
+// Lanczos method on the model's own sparse Jacobians.
 #pragma once
 
 #include "model/force_field.hpp"
-#include "analysis/power_iteration.hpp"
 
 #include <cmath>
-#include <utility>
 
 namespace cloth {
 
-/// Largest eigenvalue of -M^{-1} J for a symmetric negative semidefinite J, by power iteration
-/// (analysis/power_iteration.hpp). The top modes of the cloth lie close together, which the iteration's two-term fit
-/// copes with; it runs until the estimate changes by less than 1e-9 relative over 100 iterations (each costs two
-/// sparse products).
-inline double largest_rate(const SparseMatrix& J, double mass) {
-  const LinearOperator minus_inverse_mass_J = [&](const Vector& y, Vector& out) { out = -(J * y) / mass; };
-  Vector start = Vector::Ones(J.rows()) + Vector::LinSpaced(J.rows(), 0.0, 1.0);  // not orthogonal to the top mode
-  const PowerIterationResult top = dominant_eigenvalue(minus_inverse_mass_J, std::move(start), {1e-9, 100, 20000});
-  return top.dominant.real() > 0 ? top.magnitude : 0.0;
-}
+/// Largest eigenvalue of -M^{-1} J for a symmetric negative semidefinite J and equal particle masses, by the
+/// implicitly restarted Lanczos method (Spectra's SymEigsSolver; Lehoucq & Sorensen 1996). The cloth's top modes
+/// lie close together, which slows a power iteration to thousands of sparse products; Lanczos separates them in
+/// about a hundred. Accurate to about 1e-12 relative; 0 for J = 0.
+double largest_rate(const SparseMatrix& J, double mass);
 
 /// omega_max of the cloth linearised at its rest state: omega_max^2 = largest eigenvalue of -M^{-1} df/dx there
 /// (every spring at rest length, so -df/dx is positive semidefinite). Explicit Euler multiplies that mode's

@@ -1,9 +1,13 @@
 // Eigenvalues of the linearised cloth and its sagged equilibrium, from the analytic Jacobians of ForceField.
 #include "analysis/spectrum.hpp"
 
+#include "analysis/sparse_operators.hpp"
+#include "integrators/block_ldu.hpp"
+
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
-#include <Eigen/SparseCholesky>
+#include <Spectra/GenEigsSolver.h>
+#include <Spectra/SymEigsSolver.h>
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -51,6 +55,39 @@ std::vector<std::complex<double>> proportional_spectrum(const std::vector<double
   return lambda;
 }
 
+std::vector<double> largest_stiffness_eigenvalues(ForceField& field, const Vector& x, int count) {
+  const int n = field.dof_count();
+  count = std::clamp(count, 1, n - 2);
+  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
+  field.jacobians(x, Vector::Zero(n), dfdx, dfdv);
+  ScaledSparseProduct op(dfdx, -1.0 / field.scene().params().mass);
+  Spectra::SymEigsSolver<ScaledSparseProduct> lanczos(op, count, std::min(n, std::max(2 * count + 1, 40)));
+  lanczos.init();
+  lanczos.compute(Spectra::SortRule::LargestAlge, 1000, 1e-10);
+  const Vector values = lanczos.eigenvalues();  // descending; only the converged ones
+  return {values.data(), values.data() + values.size()};
+}
+
+std::vector<std::complex<double>> largest_eigenvalues(ForceField& field, const Vector& x, const Vector& v, int count) {
+  const int n = field.dof_count();
+  count = std::clamp(count, 1, 2 * n - 4);
+  SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
+  field.jacobians(x, v, dfdx, dfdv);
+  FirstOrderSystemProduct J(dfdx, dfdv, field.scene().params().mass);
+  // One more than asked, so that a conjugate pair at the cut can be completed.
+  const int wanted = count + 1;
+  Spectra::GenEigsSolver<FirstOrderSystemProduct> arnoldi(J, wanted, std::min(2 * n, std::max(2 * wanted + 1, 30)));
+  arnoldi.init();
+  arnoldi.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10);
+  if (arnoldi.info() != Spectra::CompInfo::Successful) return {};
+  const auto values = arnoldi.eigenvalues();  // sorted by decreasing |lambda|
+  std::vector<std::complex<double>> lambda(values.data(), values.data() + values.size());
+  const bool splits_pair = static_cast<int>(lambda.size()) > count && lambda[count - 1].imag() != 0 &&
+                           std::abs(lambda[count] - std::conj(lambda[count - 1])) <= 1e-8 * std::abs(lambda[count]);
+  lambda.resize(std::min<std::size_t>(lambda.size(), splits_pair ? count + 1 : count));
+  return lambda;
+}
+
 PowerIterationResult largest_eigenvalue_magnitude(ForceField& field, const Vector& x, const Vector& v,
                                                   double tolerance, int max_iterations) {
   const int n = field.dof_count();
@@ -75,10 +112,12 @@ Equilibrium static_equilibrium(ForceField& field, double tolerance, int max_iter
   const Vector zero = Vector::Zero(field.dof_count());
   Equilibrium eq;
   eq.x = scene.initial_positions();
-  Vector f(field.dof_count()), trial(field.dof_count());
+  Vector f(field.dof_count()), step(field.dof_count()), trial(field.dof_count());
   SparseMatrix A = field.pattern();
-  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
-  ldlt.analyzePattern(A);
+  // The block solver made for this matrix (integrators/block_ldu.hpp): on a 60 x 60 cloth several times faster
+  // than a scalar sparse LDL^T. It does not pivot; a step it cannot solve well is caught by the energy test.
+  BlockLDU ldu;
+  ldu.analyze(A, BlockLDU::Symmetry::symmetric);
   const auto potential = [&](const Vector& x) {
     const Energy e = field.energy(x, zero);
     return e.gravity + e.spring;
@@ -94,22 +133,28 @@ Equilibrium static_equilibrium(ForceField& field, double tolerance, int max_iter
     }
     // Near the minimum, the exact Hessian (symmetric treatment) gives Newton's quadratic convergence; far from
     // it, compressed springs make it indefinite and the definite treatment keeps the step a descent direction.
-    bool accepted = false;
+    double taken = 0;  // the fraction of the step taken: 1, 1/2, 1/4, or 0 when the energy would rise
     for (StiffnessTreatment treatment : {StiffnessTreatment::symmetric, StiffnessTreatment::definite}) {
       if (treatment == StiffnessTreatment::symmetric && tau < 10) continue;
       field.newton_matrix(eq.x, zero, tau, treatment, A);
-      ldlt.factorize(A);
-      if (ldlt.info() != Eigen::Success) continue;
-      trial = eq.x + ldlt.solve(tau * tau * f);
-      const double e = potential(trial);
-      if (std::isfinite(e) && e <= energy + 1e-13 * (1 + std::abs(energy))) {
-        eq.x = trial;
-        energy = e;
-        accepted = true;
-        break;
+      if (!ldu.factorize(A)) continue;
+      ldu.solve(A, tau * tau * f, step);
+      // The step, or failing that half or a quarter of it: a stiff sheet's Newton steps overshoot its sag, and
+      // shortening them costs two energies where a smaller tau would cost factorizations.
+      for (double alpha : {1.0, 0.5, 0.25}) {
+        trial = eq.x + alpha * step;
+        const double e = potential(trial);
+        if (std::isfinite(e) && e <= energy + 1e-13 * (1 + std::abs(energy))) {
+          eq.x = trial;
+          energy = e;
+          taken = alpha;
+          break;
+        }
       }
+      if (taken > 0) break;
     }
-    tau = accepted ? std::min(2 * tau, 1e6) : 0.25 * tau;
+    if (taken == 1.0) tau = std::min(2 * tau, 1e6);
+    else if (taken == 0.0) tau *= 0.25;
   }
   return eq;
 }

@@ -12,6 +12,15 @@
 
 namespace cloth {
 
+/// Up to this many unknowns (n = 3 n_free) a dense symmetric eigen-solve of an n x n matrix is cheap (under a
+/// few seconds; the 20 x 20 cloth has 1188). Beyond it, only extreme eigenvalues are computed, by Lanczos and
+/// Arnoldi on sparse products.
+inline constexpr int dense_symmetric_limit = 3000;
+
+/// Up to this many unknowns the dense non-symmetric eigen-solve of the 2n x 2n matrix J is attempted at all
+/// (the 20 x 20 cloth: 2376 x 2376, minutes; the cost grows like n^3 and the memory like n^2).
+inline constexpr int dense_general_limit = 1200;
+
 /// The dense 2n x 2n matrix J at (x, v); n = 3 n_free. For small grids only (a 20 x 20 cloth gives 2376 x 2376).
 Eigen::MatrixXd linearised_system(ForceField& field, const Vector& x, const Vector& v);
 
@@ -30,6 +39,16 @@ std::array<std::complex<double>, 2> mode_eigenvalues(double omega2, double c);
 /// both are Laplacians of the same springs: df/dx = -K L, df/dv = -D L, beta = D/K): every omega^2 gives a mode
 /// with c = beta omega^2. Exact then, and cheap: one symmetric eigenproblem serves every (K, D).
 std::vector<std::complex<double>> proportional_spectrum(const std::vector<double>& omega2, double beta);
+
+/// The `count` largest eigenvalues omega^2 of -M^{-1} df/dx at (x, v = 0), descending, by Lanczos (Spectra's
+/// SymEigsSolver) on sparse products: the fast end of stiffness_eigenvalues() for grids too large for it.
+std::vector<double> largest_stiffness_eigenvalues(ForceField& field, const Vector& x, int count);
+
+/// The `count` eigenvalues of largest |lambda| of J at (x, v), by the implicitly restarted Arnoldi method
+/// (Spectra's GenEigsSolver; Lehoucq, Sorensen & Yang 1998) on sparse products with df/dx and df/dv, without
+/// forming J. Conjugate pairs come whole (count is raised by one if it would split a pair); sorted by
+/// decreasing |lambda|. Empty if Arnoldi does not converge.
+std::vector<std::complex<double>> largest_eigenvalues(ForceField& field, const Vector& x, const Vector& v, int count);
 
 /// Largest |lambda| of J at (x, v) without forming J: power iteration (analysis/power_iteration.hpp) on sparse
 /// products with df/dx and df/dv. The dominant eigenvalues of a real J are often a conjugate pair, which the

@@ -26,6 +26,35 @@ std::vector<double> stability_polynomial(const ButcherTableau& tableau) {
   return r;
 }
 
+double stability_at_infinity(const ButcherTableau& tableau) {
+  // R(z) = R_inf + c1 / z + c2 / z^2 + ...: at z, 2z and 4z, two Richardson levels remove c1 and c2. |z| = 1e4
+  // balances the rest (c3 / z^3 ~ 1e-12) against rounding (1 + z b^T Y cancels terms of size |z|, ~1e-12).
+  const double z = -1e4;
+  const double r1 = stability_function(tableau, z).real(), r2 = stability_function(tableau, 2 * z).real(),
+               r4 = stability_function(tableau, 4 * z).real();
+  // A polynomial of degree k >= 1 (an explicit method) grows by 4^k from z to 4z; a bounded R barely moves.
+  if (std::abs(r4) > 2 * std::abs(r1) + 1) return INFINITY;
+  const double once_12 = 2 * r2 - r1, once_24 = 2 * r4 - r2;
+  return (4 * once_24 - once_12) / 3;
+}
+
+double imaginary_axis_maximum(const ButcherTableau& tableau, int samples) {
+  const double quarter_turn = std::acos(0.0);
+  double largest = std::abs(stability_at_infinity(tableau));
+  for (int k = 0; k < samples; ++k) {
+    const double y = std::tan(quarter_turn * k / samples);
+    largest = std::max(largest, std::abs(stability_function(tableau, Complex(0, y))));
+  }
+  return largest;
+}
+
+bool a_stable(const ButcherTableau& tableau) {
+  const Eigen::VectorXcd eigenvalues = tableau.A.eigenvalues();
+  for (const Complex& lambda : eigenvalues)
+    if (std::abs(lambda) > 1e-14 && !(lambda.real() > 1e-14)) return false;  // a pole 1/lambda with Re <= 0
+  return imaginary_axis_maximum(tableau) <= 1 + 1e-12;
+}
+
 Complex implicit_euler_stability(Complex z) { return 1.0 / (1.0 - z); }
 
 double symplectic_euler_amplification(Complex z1, Complex z2) {

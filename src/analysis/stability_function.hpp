@@ -23,6 +23,22 @@ Complex stability_function(const ButcherTableau& tableau, Complex z);
 /// many points; equal to stability_function() to rounding.
 std::vector<double> stability_polynomial(const ButcherTableau& tableau);
 
+/// R(infinity), the limit of R(z) as |z| grows: how much of a mode far stiffer than 1/h survives a step. 0 for an
+/// L-stable method (backward Euler, the SDIRKs), -1 for implicit midpoint and the trapezoid rule, whose stiff
+/// modes flip sign each step and never decay. R is a rational function of degree s, so R(z) = R_inf + c1 / z +
+/// c2 / z^2 + ...; three evaluations far out (z = -1e4, -2e4, -4e4) give R_inf to about 1e-11 by Richardson
+/// extrapolation, whether or not A is invertible (an ESDIRK's is not). Infinite for an explicit tableau.
+double stability_at_infinity(const ButcherTableau& tableau);
+
+/// The largest |R(iy)| over the imaginary axis, sampled at y = tan(theta) for `samples` angles theta in [0, pi/2)
+/// (R has real coefficients, so R(-iy) is the conjugate of R(iy)), plus R(infinity).
+double imaginary_axis_maximum(const ButcherTableau& tableau, int samples = 4000);
+
+/// A-stability (|R(z)| <= 1 on the whole left half-plane), by the maximum principle: R has no pole there (its
+/// poles are 1/lambda for the eigenvalues lambda != 0 of A, so every eigenvalue needs Re lambda >= 0, and none on
+/// the axis) and |R(iy)| <= 1 + 1e-12 on the imaginary axis (Hairer & Wanner 1996, IV.3).
+bool a_stable(const ButcherTableau& tableau);
+
 /// Implicit Euler on y' = lambda y: y1 = y0 / (1 - z), so R(z) = 1 / (1 - z); A-stable (|R| <= 1 for Re z <= 0).
 Complex implicit_euler_stability(Complex z);
 

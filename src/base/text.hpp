@@ -8,7 +8,7 @@
 
 namespace cloth {
 
-/// `text` with every byte that is not printable ASCII written as an escape (\n, \t, \xNN), so that a message
+/// `text` with every byte that is not printable ASCII written as an escape (`\n`, `\t`, `\xNN`), so that a message
 /// quoting it is one line of plain text whatever the input held: no raw control bytes reach the terminal.
 std::string escaped(std::string_view text);
 

@@ -1,6 +1,8 @@
-// Butcher tableaus: the built-in methods, the order conditions that check them, and the tableau file format.
+// Butcher tableaus: the order conditions that check them (generated from the rooted trees, for b and for an
+// embedded pair's b-hat), and the tableau file format.
 #include "integrators/butcher_tableau.hpp"
 
+#include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "base/text.hpp"
 #include "base/text_file.hpp"
@@ -8,56 +10,15 @@
 
 #include <cmath>
 #include <sstream>
-#include <sys/stat.h>
 
 namespace cloth {
 
 namespace {
 
-std::string fmt(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
 // Rounding tolerance of the checks: tableaus are given as fractions, so their conditions hold to a few ulps.
 constexpr double tolerance = 1e-12;
 
-ButcherTableau make(std::string name, int order, std::initializer_list<std::initializer_list<double>> A,
-                    std::initializer_list<double> b) {
-  ButcherTableau t;
-  t.name = std::move(name);
-  t.order = order;
-  const int s = static_cast<int>(b.size());
-  t.A = Eigen::MatrixXd::Zero(s, s);
-  int i = 0;
-  for (const auto& row : A) {
-    int j = 0;
-    for (double a : row) t.A(i, j++) = a;
-    ++i;
-  }
-  t.b = Eigen::Map<const Eigen::VectorXd>(b.begin(), s);
-  t.c = t.A.rowwise().sum();
-  return t;
-}
-
 }  // namespace
-
-const std::vector<ButcherTableau>& builtin_tableaus() {
-  // [builtin_tableaus]
-  static const std::vector<ButcherTableau> tableaus = {
-      make("euler", 1, {{0}}, {1}),
-      make("heun", 2, {{0, 0}, {1, 0}}, {0.5, 0.5}),
-      make("midpoint", 2, {{0, 0}, {0.5, 0}}, {0, 1}),
-      make("kutta3", 3, {{0, 0, 0}, {0.5, 0, 0}, {-1, 2, 0}}, {1.0 / 6, 2.0 / 3, 1.0 / 6}),
-      make("rk4", 4, {{0, 0, 0, 0}, {0.5, 0, 0, 0}, {0, 0.5, 0, 0}, {0, 0, 1, 0}}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}),
-      make("rule38", 4, {{0, 0, 0, 0}, {1.0 / 3, 0, 0, 0}, {-1.0 / 3, 1, 0, 0}, {1, -1, 1, 0}},
-           {1.0 / 8, 3.0 / 8, 3.0 / 8, 1.0 / 8}),
-  };
-  // [builtin_tableaus]
-  return tableaus;
-}
 
 bool ButcherTableau::first_same_as_last() const {
   const int s = stages();
@@ -86,7 +47,7 @@ void check_order(const ButcherTableau& t, const std::string& who, const Eigen::V
       std::string message = who + "claims order " + std::to_string(order);
       if (row != "b") message += " for " + row;
       message += " but the order-" + std::to_string(p) + " condition " + condition;
-      message += " (tree " + tree.bracket + ") fails by " + fmt(defect);
+      message += " (tree " + tree.bracket + ") fails by " + format_number(defect, 17);
       throw InputError(message);
     }
   }
@@ -121,14 +82,14 @@ void validate(const ButcherTableau& t) {
   for (int i = 0; i < s; ++i)
     for (int j = i; j < s; ++j)
       if (t.A(i, j) != 0.0)
-        throw InputError(who + "a_" + std::to_string(i + 1) + std::to_string(j + 1) + " = " + fmt(t.A(i, j)) +
+        throw InputError(who + "a_" + std::to_string(i + 1) + std::to_string(j + 1) + " = " + format_number(t.A(i, j), 17) +
                          " is on or above the diagonal: the method is implicit, and this engine runs explicit "
                          "methods only (A strictly lower triangular)");
   for (int i = 0; i < s; ++i) {
     const double row_sum = t.A.row(i).sum();
     if (std::abs(t.c[i] - row_sum) > tolerance)
-      throw InputError(who + "row " + std::to_string(i + 1) + ": c_" + std::to_string(i + 1) + " = " + fmt(t.c[i]) +
-                       " but the row sum of A is " + fmt(row_sum) + " (consistency needs c_i = sum_j a_ij)");
+      throw InputError(who + "row " + std::to_string(i + 1) + ": c_" + std::to_string(i + 1) + " = " + format_number(t.c[i], 17) +
+                       " but the row sum of A is " + format_number(row_sum, 17) + " (consistency needs c_i = sum_j a_ij)");
   }
   check_order(t, who, t.b, t.order, "b");
   if (t.has_embedded()) {
@@ -157,7 +118,7 @@ bool parse_entry(const std::string& token, double& value) {
 
 }  // namespace
 
-ButcherTableau parse_tableau(const std::string& text, const std::string& source_name) {
+ButcherTableau parse_tableau_entries(const std::string& text, const std::string& source_name) {
   const std::string source = escaped(source_name);
   ButcherTableau t;
   t.name = source;
@@ -249,29 +210,24 @@ ButcherTableau parse_tableau(const std::string& text, const std::string& source_
   }
   t.b = Eigen::Map<const Eigen::VectorXd>(b.data(), s);
   if (have_b_hat) t.b_hat = Eigen::Map<const Eigen::VectorXd>(b_hat.data(), static_cast<Eigen::Index>(b_hat.size()));
+  return t;
+}
+
+ButcherTableau parse_tableau(const std::string& text, const std::string& source_name) {
+  ButcherTableau t = parse_tableau_entries(text, source_name);
   try {
     validate(t);
   } catch (const InputError& e) {
-    throw InputError(source + ": " + e.what());
+    throw InputError(escaped(source_name) + ": " + e.what());
   }
   return t;
 }
 
-ButcherTableau read_tableau(const std::string& path) {
+std::string read_tableau_text(const std::string& path) {
   // A tableau is a few lines; 64 KiB leaves room for comments and stops a wrong path from being read for long.
-  return parse_tableau(read_text_file(path, 64 * 1024), path);
+  return read_text_file(path, 64 * 1024);
 }
 
-ButcherTableau tableau_from_argument(const std::string& name_or_path) {
-  std::string names;
-  for (const ButcherTableau& t : builtin_tableaus()) {
-    if (t.name == name_or_path) return t;
-    names += (names.empty() ? "" : ", ") + t.name;
-  }
-  // Anything that exists is taken for a file, so that a folder or a FIFO is refused for what it is.
-  struct stat info {};
-  if (::stat(name_or_path.c_str(), &info) == 0) return read_tableau(name_or_path);
-  throw InputError("'" + escaped(name_or_path) + "' is neither a built-in tableau (" + names + ") nor a readable file");
-}
+ButcherTableau read_tableau(const std::string& path) { return parse_tableau(read_tableau_text(path), path); }
 
 }  // namespace cloth

@@ -1,6 +1,6 @@
-// The Butcher tableau (A, b, c) of an explicit Runge-Kutta method, with an optional second weight row b-hat for
-// an embedded pair (Chapter 8), its validation against the order conditions, the built-in methods of Chapter 3,
-// and the small text format a reader can write a tableau in.
+// The Butcher tableau (A, b, c) of a Runge-Kutta method, with an optional second weight row b-hat for an
+// embedded pair (Chapter 8), its validation against the order conditions, and the small text format a reader can
+// write a tableau in. The book's own tableaus are rows of the method registry.
 #pragma once
 
 #include <Eigen/Core>
@@ -42,13 +42,6 @@ void validate(const ButcherTableau& tableau);
 /// 0 (to rounding) for a row of order >= p.
 double order_condition_defect(const ButcherTableau& tableau, int p, bool embedded = false);
 
-/// The built-in tableaus: euler, heun, midpoint, kutta3, rk4, rule38.
-const std::vector<ButcherTableau>& builtin_tableaus();
-
-/// A built-in tableau by name, or else a tableau file by path. Throws InputError listing the accepted names
-/// when neither exists, or naming the line that is wrong in a file.
-ButcherTableau tableau_from_argument(const std::string& name_or_path);
-
 /// Reads the text format of Chapter 3 (see chapters/03_runge_kutta/rk4_report.tableau), with the optional
 /// embedded row of Chapter 8 ('bhat ...' and 'embedded_order q'; chapters/08_adaptive_step/dopri5.tableau), from
 /// a regular file of printable text and at most 64 KiB (base/text_file.hpp). Throws InputError naming the file and
@@ -59,5 +52,12 @@ ButcherTableau read_tableau(const std::string& path);
 /// Parses that format from text; `source` names it in error messages (escaped). The name the text gives is any
 /// word: a program that makes a file name of it reduces it with safe_file_name (base/text.hpp) first.
 ButcherTableau parse_tableau(const std::string& text, const std::string& source);
+
+/// The same format read without validate(): the shapes are checked, the method is not. For engines that accept
+/// other tableaus than the explicit engine (Chapter 9's diagonally implicit ones), which validate them their way.
+ButcherTableau parse_tableau_entries(const std::string& text, const std::string& source);
+
+/// The whole text of a tableau file; throws InputError when it cannot be read.
+std::string read_tableau_text(const std::string& path);
 
 }  // namespace cloth

@@ -15,6 +15,13 @@ ExplicitRungeKutta::ExplicitRungeKutta(ForceField& field, ButcherTableau tableau
   stage_x_.resize(n);
   sum_v_.resize(n);
   sum_a_.resize(n);
+  // b = e_i: the step is x + h V_i, v + h a_i, with no weighted sums to form (explicit Euler then costs what
+  // the two lines x += h v, v += h a cost, and gives their bits).
+  if ((tableau_.b.array() != 0.0).count() == 1) {
+    Eigen::Index i = 0;
+    tableau_.b.cwiseAbs().maxCoeff(&i);
+    if (tableau_.b[i] == 1.0) only_stage_ = static_cast<int>(i);
+  }
 }
 
 bool ExplicitRungeKutta::step(double h, Vector& x, Vector& v) {
@@ -46,24 +53,29 @@ bool ExplicitRungeKutta::step(double h, Vector& x, Vector& v) {
     field_.acceleration(formed ? stage_x_ : x, formed ? Vi : v, stage_a_[static_cast<std::size_t>(i)]);
   }
   // x1 = x + h sum_i b_i V_i,  v1 = v + h sum_i b_i a_i
-  // The sums start from their first term rather than from zero, so the one-stage tableau "euler" reproduces
-  // ExplicitEuler bit for bit (0 + (-0) would turn a negative zero positive).
-  bool first = true;
-  for (int i = 0; i < s; ++i) {
-    if (b[i] == 0.0) continue;
-    const Vector& Vi = *V_[static_cast<std::size_t>(i)];
-    const Vector& ai = stage_a_[static_cast<std::size_t>(i)];
-    if (first) {
-      sum_v_.noalias() = b[i] * Vi;
-      sum_a_.noalias() = b[i] * ai;
-      first = false;
-    } else {
-      sum_v_.noalias() += b[i] * Vi;
-      sum_a_.noalias() += b[i] * ai;
+  if (only_stage_ >= 0) {  // b = e_i: the step is stage i's own slope
+    const auto i = static_cast<std::size_t>(only_stage_);
+    x.noalias() += h * *V_[i];
+    v.noalias() += h * stage_a_[i];
+  } else {
+    // The sums start from their first term rather than from zero (0 + (-0) would turn a negative zero positive).
+    bool first = true;
+    for (int i = 0; i < s; ++i) {
+      if (b[i] == 0.0) continue;
+      const Vector& Vi = *V_[static_cast<std::size_t>(i)];
+      const Vector& ai = stage_a_[static_cast<std::size_t>(i)];
+      if (first) {
+        sum_v_.noalias() = b[i] * Vi;
+        sum_a_.noalias() = b[i] * ai;
+        first = false;
+      } else {
+        sum_v_.noalias() += b[i] * Vi;
+        sum_a_.noalias() += b[i] * ai;
+      }
     }
+    x.noalias() += h * sum_v_;
+    v.noalias() += h * sum_a_;
   }
-  x.noalias() += h * sum_v_;
-  v.noalias() += h * sum_a_;
   // [rk_stage_loop]
   counters_.rhs_evaluations += s;
   ++counters_.steps;

@@ -26,6 +26,7 @@ class ExplicitRungeKutta final : public Stepper {
   std::vector<Vector> stage_a_;  // a_i = M^{-1} f(X_i, V_i)
   Vector stage_x_;               // X_i, needed only while a_i is evaluated
   Vector sum_v_, sum_a_;         // sum_i b_i V_i and sum_i b_i a_i
+  int only_stage_ = -1;          // i when b = e_i (explicit Euler, the midpoint rule): the step is stage i's
 };
 
 }  // namespace cloth

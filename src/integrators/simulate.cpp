@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 
 namespace cloth {
 
@@ -41,12 +40,9 @@ std::string divergence_reason(const Vector& x, const Vector& v, double radius) {
     const double d2 = x[k] * x[k] + x[k + 1] * x[k + 1] + x[k + 2] * x[k + 2];
     const double s2 = v[k] * v[k] + v[k + 1] * v[k + 1] + v[k + 2] * v[k + 2];
     if (!std::isfinite(d2) || !std::isfinite(s2)) return "a non-finite position or velocity";
-    if (d2 > r2) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "a particle %.3g m from the origin, beyond the bound R = %.3g m", std::sqrt(d2),
-                    radius);
-      return buf;
-    }
+    if (d2 > r2)
+      return "a particle " + format_number(std::sqrt(d2), 3) + " m from the origin, beyond the bound R = " +
+             format_number(radius, 3) + " m";
   }
   return {};
 }

@@ -66,6 +66,11 @@ struct RunResult {
   Vector x, v;
   std::vector<EnergySample> energy;  ///< one sample per step, t = 0 included
   std::vector<Frame> frames;         ///< the cloth at t = k T / frames
+
+  /// Newton iterations per completed step (0 without steps, and for an explicit method).
+  [[nodiscard]] double newton_iterations_per_step() const {
+    return steps > 0 ? static_cast<double>(counters.newton_iterations) / static_cast<double>(steps) : 0.0;
+  }
 };
 
 /// A state is declared diverged when a coordinate is not finite or a particle is farther from the origin than

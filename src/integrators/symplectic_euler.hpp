@@ -1,6 +1,7 @@
 // Symplectic (semi-implicit) Euler: v1 = v0 + h M^{-1} f(x0, v0), then x1 = x0 + h v1. As cheap as explicit
 // Euler, but for undamped springs it keeps the energy bounded when h omega < 2: the explicit method cloth
-// practitioners use.
+// practitioners use. It is a partitioned method, explicit Euler for v and implicit Euler for x (two different
+// tableaus), so the one-tableau Runge-Kutta engine cannot run it and it keeps this stepper of its own.
 #pragma once
 
 #include "integrators/stepper.hpp"

@@ -9,6 +9,13 @@
 
 namespace cloth {
 
+const NameTable<StiffnessTreatment>& stiffness_treatments() {
+  static const NameTable<StiffnessTreatment> table("Jacobian treatment", {{StiffnessTreatment::exact, "exact"},
+                                                                          {StiffnessTreatment::symmetric, "symmetric"},
+                                                                          {StiffnessTreatment::definite, "definite"}});
+  return table;
+}
+
 namespace {
 
 enum class DampingLaw { none, projected, report };

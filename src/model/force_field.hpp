@@ -2,6 +2,7 @@
 // Jacobians df/dx and df/dv assembled into sparse matrices whose pattern is built once per scene.
 #pragma once
 
+#include "base/name_table.hpp"
 #include "model/scene.hpp"
 
 #include <Eigen/Core>
@@ -32,6 +33,9 @@ enum class StiffnessTreatment {
   definite    ///< also Choi & Ko (2002): compressed springs lose their transverse term, so the matrix is
               ///< symmetric positive definite
 };
+
+/// The treatments by name: exact, symmetric, definite.
+const NameTable<StiffnessTreatment>& stiffness_treatments();
 
 /// Below this fraction of its rest length a spring has no defined direction u; it then exerts no force and
 /// contributes nothing to the Jacobians (the guard for coincident particles, Chapter 7).

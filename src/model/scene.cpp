@@ -50,6 +50,8 @@ void validate(const SceneParams& p) {
     throw InputError("spacing " + format_number(g.d) + ": expected a finite number > 0");
   if (!(std::isfinite(p.stiffness) && p.stiffness > 0))
     throw InputError("stiffness K = " + format_number(p.stiffness) + ": expected a finite number > 0");
+  if (p.flexion_stiffness && !(std::isfinite(*p.flexion_stiffness) && *p.flexion_stiffness > 0))
+    throw InputError("flexion stiffness = " + format_number(*p.flexion_stiffness) + ": expected a finite number > 0");
   if (!(std::isfinite(p.damping) && p.damping >= 0))
     throw InputError("damping D = " + format_number(p.damping) + ": expected a finite number >= 0");
   if (!std::isfinite(p.initial_velocity_z))
@@ -86,6 +88,7 @@ Scene::Scene(const SceneParams& params) : params_(params) {
 
   springs_ = build_springs(g, params_.families, slot_of_particle_);
   stiffness_.fill(params_.stiffness);
+  if (params_.flexion_stiffness) set_family_stiffness(SpringFamily::flexion, *params_.flexion_stiffness);
   damping_.fill(params_.damping);
 
   rest_positions_.resize(3 * n);

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,10 @@ const char* pin_set_name(PinSet pins);
 /// The report's scene and its variations: every number a Scene is built from.
 struct SceneParams {
   Grid grid;
-  double stiffness = 50.0;            ///< K [N/m], for every family
+  double stiffness = 50.0;            ///< K [N/m], for every family unless flexion_stiffness says otherwise
+  /// K of the flexion springs alone [N/m] (Chapter 10: fabric bends far more easily than it stretches); unset,
+  /// the flexion springs take `stiffness` like the others.
+  std::optional<double> flexion_stiffness;
   double damping = 0.0;               ///< D [N s/m] (projected) or [N s/m^2] (report law), for every family
   DampingModel damping_model = DampingModel::projected;
   FamilySet families = FamilySet::all();

@@ -106,6 +106,7 @@ constexpr CommonFlag common_flags[] = {
     {"--spacing", "d", "rest spacing [m], > 0", "0.1"},
     {"--mass", "m", "mass of each particle [kg], > 0", "1"},
     {"--K", "k", "spring stiffness [N/m], > 0", "50"},
+    {"--K-flexion", "k", "stiffness of the flexion springs alone [N/m], > 0", "--K"},
     {"--damping", "D", "damping coefficient, >= 0", "0"},
     {"--damping-model", "projected|report", "damping law", "projected"},
     {"--springs", "LIST", "comma list of structural,shear,flexion", "all three"},
@@ -150,6 +151,7 @@ void set_common(Options& opt, std::string& grid_text, const std::string& flag, c
   else if (flag == "--spacing") opt.scene.grid.d = positive(value);
   else if (flag == "--mass") opt.scene.mass = positive(value);
   else if (flag == "--K") opt.scene.stiffness = positive(value);
+  else if (flag == "--K-flexion") opt.scene.flexion_stiffness = positive(value);
   else if (flag == "--damping") opt.scene.damping = non_negative(value);
   else if (flag == "--damping-model") {
     if (value == "projected") opt.scene.damping_model = DampingModel::projected;
@@ -286,9 +288,9 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
                        format_number(opt.run.dt) + ": expected t-end >= dt");
     if (opt.run.t_end / opt.run.dt > 1e9)
       throw InputError("--t-end / --dt: more than 1e9 steps asked for; expected at most 1e9");
-    require_representable(opt.scene, opt.run);
-    require_run_memory(opt.scene, opt.run, explicit_bytes_per_particle());
   }
+  require_representable(opt.scene, opt.run);
+  if (uses("--dt") || uses("--t-end")) require_run_memory(opt.scene, opt.run, explicit_bytes_per_particle());
   return opt;
 }
 

@@ -81,7 +81,9 @@ void require_run_memory(const SceneParams& scene, const RunSettings& settings, d
                                            " grid", ": expected fewer frames or a smaller grid");
 }
 
-void require_representable(const SceneParams& p, const RunSettings& run) {
+void require_representable(const SceneParams& scene, const RunSettings& settings) {
+  const SceneParams& p = scene;
+  const RunSettings& run = settings;
   // Quantities the model squares must stay well inside the doubles: 1e150 squared is 1e300.
   constexpr double largest = 1e150;
   constexpr double largest_energy = 1e300;

@@ -12,6 +12,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <stdexcept>
 #include <sys/stat.h>
@@ -61,17 +62,23 @@ void prepare_outputs(const std::string& dir, const std::vector<std::string>& out
   for (const std::vector<std::string>* list : {&outputs, &others})
     for (const std::string& name : *list)
       if (!stays_inside(name)) throw std::logic_error("output name '" + escaped(name) + "' leaves its folder");
+  const auto in_dir = [&dir](const std::string& name) {
+    std::string path = dir;
+    path.append("/").append(name);
+    return path;
+  };
   // Everything in the way is found before anything is created.
   if (exists(dir) && !is_directory(dir))
     throw InputError(flag + ": " + quoted(dir) + " exists and is not a folder: expected a writable folder path");
   for (const std::string& name : outputs) {
     for (std::size_t slash = name.find('/'); slash != std::string::npos; slash = name.find('/', slash + 1)) {
-      const std::string folder = dir + "/" + name.substr(0, slash);
+      const std::string folder = in_dir(name.substr(0, slash));
       if (exists(folder) && !is_directory(folder))
         throw InputError(flag + ": " + quoted(folder) + " is a file where the run puts a folder of outputs: expected "
                          "an --out without it (remove it or choose another folder)");
     }
-    for (const std::string& file : {dir + "/" + name, dir + "/" + name + ".partial"})
+    const std::string file_path = in_dir(name);
+    for (const std::string& file : {file_path, file_path + ".partial"})
       if (is_directory(file))
         throw InputError(flag + ": " + quoted(file) + " is a folder where the run writes a file: expected an --out "
                          "without it (remove it or choose another folder)");
@@ -86,22 +93,64 @@ void prepare_outputs(const std::string& dir, const std::vector<std::string>& out
                      "): expected a writable folder path");
   for (const std::string& name : outputs)
     if (const auto slash = name.rfind('/'); slash != std::string::npos) {
-      fs::create_directories(dir + "/" + name.substr(0, slash), ec);
-      if (ec)
-        throw InputError(flag + ": cannot create folder " + quoted(dir + "/" + name.substr(0, slash)) + " (" +
-                         ec.message() + ")");
+      const std::string folder = in_dir(name.substr(0, slash));
+      fs::create_directories(folder, ec);
+      if (ec) throw InputError(flag + ": cannot create folder " + quoted(folder) + " (" + ec.message() + ")");
     }
   for (const std::string& name : others)
-    if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) remove_if_regular(dir + "/" + name);
+    if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) remove_if_regular(in_dir(name));
   for (const std::vector<std::string>* list : {&outputs, &others})
-    for (const std::string& name : *list) remove_if_regular(dir + "/" + name + ".partial");
+    for (const std::string& name : *list) remove_if_regular(in_dir(name + ".partial"));
 }
 
 void prepare_output_dir(const std::string& dir, const std::string& flag) { prepare_outputs(dir, {}, {}, flag); }
 
+struct OutputSink {
+  int fd = -1;
+  int error = 0;  // errno of the first write or close the system refused
+};
+
+namespace {
+
+// The stream's write function (fopencookie): write(2) until every byte is taken, keeping the first refusal's
+// errno. It returns the bytes taken, 0 on an error, as fopencookie asks.
+ssize_t write_to_sink(void* cookie, const char* data, std::size_t size) {
+  auto& sink = *static_cast<OutputSink*>(cookie);
+  std::size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::write(sink.fd, data + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      if (sink.error == 0) sink.error = n < 0 ? errno : EIO;
+      return static_cast<ssize_t>(done);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  return static_cast<ssize_t>(done);
+}
+
+int close_sink(void* cookie) {
+  auto& sink = *static_cast<OutputSink*>(cookie);
+  // close(2) can report a write the system deferred (NFS, quotas): it counts as a refused write.
+  if (::close(sink.fd) != 0 && sink.error == 0) sink.error = errno;
+  sink.fd = -1;
+  return sink.error == 0 ? 0 : -1;
+}
+
+}  // namespace
+
 OutputFile::OutputFile(std::string path)
-    : path_(std::move(path)), temporary_(path_ + ".partial"), file_(std::fopen(temporary_.c_str(), "w")) {
-  if (file_ == nullptr) fail(errno);
+    : path_(std::move(path)), temporary_(path_ + ".partial"), sink_(std::make_unique<OutputSink>()) {
+  sink_->fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (sink_->fd < 0) fail(errno);
+  file_ = ::fopencookie(sink_.get(), "w", cookie_io_functions_t{nullptr, write_to_sink, nullptr, close_sink});
+  if (file_ == nullptr) {
+    const int error = errno;
+    ::close(sink_->fd);
+    std::remove(temporary_.c_str());
+    fail(error);
+  }
+  std::setvbuf(file_, nullptr, _IOFBF, 1 << 16);
 }
 
 OutputFile::~OutputFile() {
@@ -112,15 +161,12 @@ OutputFile::~OutputFile() {
 }
 
 void OutputFile::commit() {
-  errno = 0;
   const bool flushed = std::fflush(file_) == 0 && std::ferror(file_) == 0;
-  const int flush_error = errno;
   const bool closed = std::fclose(file_) == 0;
-  const int close_error = errno;
   file_ = nullptr;
   if (!flushed || !closed) {
     std::remove(temporary_.c_str());
-    fail(!flushed ? flush_error : close_error);
+    fail(sink_->error);
   }
   if (std::rename(temporary_.c_str(), path_.c_str()) != 0) {
     const int error = errno;

@@ -8,6 +8,7 @@
 #include "model/force_field.hpp"
 
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -37,12 +38,16 @@ class OutputError : public std::runtime_error {
 void prepare_outputs(const std::string& dir, const std::vector<std::string>& outputs,
                      const std::vector<std::string>& others = {}, const std::string& flag = "--out");
 
+/// Where an OutputFile's stream writes: its file descriptor and the first error the system gave for it.
+struct OutputSink;
+
 /// One output file, written whole or not at all. It is written under a temporary name (`path` + ".partial") and
 /// renamed to `path` by commit(), so a final name never holds a partial file; destroyed without commit() (an
 /// exception, an interrupted run) it removes the temporary file. stdio buffers what fprintf writes, so a write the
 /// system refuses (a full disk) usually fails only at a later flush or at fclose, and sets the stream's error flag
 /// rather than failing the fprintf that caused it: whether the file is whole is known at commit(), which every
-/// writer calls last. Usage:
+/// writer calls last. The stream hands its buffers to the system through OutputFile's own write function, which
+/// keeps the system's reason (errno) of the first refused write for commit()'s message. Usage:
 ///   OutputFile f(dir + "/order.dat");
 ///   std::fprintf(f.get(), "# h error\n");
 ///   f.commit();  // throws OutputError if anything failed
@@ -64,7 +69,8 @@ class OutputFile {
   [[noreturn]] void fail(int error) const;
 
   std::string path_, temporary_;
-  std::FILE* file_;
+  std::unique_ptr<OutputSink> sink_;
+  std::FILE* file_ = nullptr;
 };
 
 // Each writer throws OutputError when its file is not written in full.

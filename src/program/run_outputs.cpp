@@ -49,13 +49,13 @@ void write_outputs(const RunResult& result, const Stepper& stepper, const RunSet
       {"wall_seconds", num(result.wall_seconds)},
       {"rhs_evaluations", std::to_string(result.counters.rhs_evaluations)},
       {"newton_iterations", std::to_string(result.counters.newton_iterations)},
-      {"newton_iterations_per_step",
-       num(result.steps > 0 ? static_cast<double>(result.counters.newton_iterations) / static_cast<double>(result.steps)
-                            : 0.0)},
+      {"newton_iterations_per_step", num(result.newton_iterations_per_step())},
       {"jacobian_assemblies", std::to_string(result.counters.jacobian_assemblies)},
       {"factorizations", std::to_string(result.counters.factorizations)},
       {"cg_iterations", std::to_string(result.counters.cg_iterations)},
   };
+  // The flexion springs' own stiffness only when one was given, so that every other run.txt stays as it was.
+  if (p.flexion_stiffness) kv.insert(kv.begin() + 5, {"K_flexion", num(*p.flexion_stiffness)});
   kv.insert(kv.end(), extra.begin(), extra.end());
   const int signal = stop_signal(settings);
   if (result.status == RunStatus::interrupted || (result.status == RunStatus::ok && signal != 0)) {

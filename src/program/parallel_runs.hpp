@@ -1,5 +1,6 @@
-// Independent runs spread over a few threads. Each job builds its own Scene, ForceField and Stepper, since those
-// are not safe to share; the pool only hands out job numbers and carries the first exception back to the caller.
+// Independent runs spread over a few threads, for the programs that run many (Chapters 5 and 7). Each job builds
+// its own Scene, ForceField and Stepper, since those are not safe to share; the pool only hands out job numbers
+// and carries the first exception back to the caller.
 #pragma once
 
 #include <atomic>
@@ -11,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-namespace cloth::ch05 {
+namespace cloth {
 
 /// Calls job(0) .. job(count - 1), at most `threads` at a time, in order of job number as threads free up (put
 /// the longest jobs first). Rethrows the first exception a job threw, after every thread has stopped. Returns the
@@ -40,4 +41,4 @@ inline double run_in_parallel(std::size_t count, int threads, const std::functio
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-}  // namespace cloth::ch05
+}  // namespace cloth

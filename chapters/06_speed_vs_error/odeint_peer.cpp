@@ -1,0 +1,207 @@
+// Chapter 6's peer comparison with Boost.Odeint, RK4 at fixed h on the report scene:
+//  1. the whole ch03_runge_kutta process, with its default outputs, against the program a reader would write with
+//     odeint alone (plain_odeint_cloth.hpp), each timed as a process;
+//  2. the integrators alone on the same forces: odeint's runge_kutta4 driving cloth::ForceField against the
+//     core's generic Butcher-tableau engine, timed in one process.
+// `--program plain` runs only the reader's program (what part 1 times). Writes odeint_comparison.md (a table for
+// the book) and odeint_comparison.txt to --out.
+#include "plain_odeint_cloth.hpp"
+#include "timing.hpp"
+
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
+#include "integrators/method_registry.hpp"
+#include "program/command_line.hpp"
+#include "program/output.hpp"
+
+#include <boost/numeric/odeint.hpp>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+
+extern char** environ;
+
+using namespace cloth;
+
+namespace {
+
+ch06::PlainOdeintCloth plain_cloth(const SceneParams& s) {
+  return {s.grid.M, s.grid.N, s.grid.d, s.stiffness, s.damping, s.mass, s.gravity, s.initial_velocity_z};
+}
+
+// odeint's runge_kutta4 driving the core's forces: the state is (x, v) of the free particles in one
+// std::vector, the right-hand side (v, M^{-1} f(x, v)) from ForceField::acceleration.
+Vector odeint_on_core_forces(ForceField& field, double h, double T) {
+  const int n = field.dof_count();
+  std::vector<double> y(2 * static_cast<std::size_t>(n));
+  Eigen::Map<Vector>(y.data(), n) = field.scene().initial_positions();
+  Eigen::Map<Vector>(y.data() + n, n) = field.scene().initial_velocities();
+  const auto system = [&](const std::vector<double>& s, std::vector<double>& dsdt, double /*t*/) {
+    const Eigen::Map<const Vector> x(s.data(), n), v(s.data() + n, n);
+    Eigen::Map<Vector>(dsdt.data(), n) = v;
+    Eigen::Map<Vector> a(dsdt.data() + n, n);
+    field.acceleration(x, v, a);
+  };
+  boost::numeric::odeint::runge_kutta4<std::vector<double>> rk4;
+  const long steps = std::lround(T / h);
+  for (long k = 0; k < steps; ++k) rk4.do_step(std::cref(system), y, static_cast<double>(k) * h, h);
+  return Eigen::Map<Vector>(y.data(), n);
+}
+
+// The core's generic Butcher-tableau engine with the rk4 tableau, the same steps, no driver and no outputs.
+Vector core_engine(ForceField& field, double h, double T) {
+  auto stepper = make_stepper("rk4", field);
+  Vector x = field.scene().initial_positions(), v = field.scene().initial_velocities();
+  const long steps = std::lround(T / h);
+  for (long k = 0; k < steps; ++k) stepper->step(h, x, v);
+  return x;
+}
+
+double lowest_z(const Vector& x) {
+  double z = INFINITY;
+  for (Eigen::Index k = 2; k < x.size(); k += 3) z = std::min(z, x[k]);
+  return z;
+}
+
+// Runs a program to its end; returns its wall and CPU (user + system) seconds. Throws when it fails.
+ch06::Seconds time_process(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  const auto start = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw InputError("cannot run " + args[0]);
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw InputError(args[0] + " did not finish with status 0");
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return {wall, seconds(usage.ru_utime) + seconds(usage.ru_stime)};
+}
+
+// The fastest of `runs` (wall and CPU separately): on a shared machine the least disturbed run.
+ch06::Seconds best_of(int runs, const std::function<ch06::Seconds()>& once) {
+  ch06::Seconds best{INFINITY, INFINITY};
+  for (int k = 0; k < runs; ++k) {
+    const ch06::Seconds s = once();
+    best.wall = std::min(best.wall, s.wall);
+    best.cpu = std::min(best.cpu, s.cpu);
+  }
+  return best;
+}
+
+ch06::Seconds time_in_process(const std::function<void()>& body) {
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu = ch06::thread_cpu_seconds();
+  body();
+  return {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+          ch06::thread_cpu_seconds() - cpu};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CommandLine cli("ch06_odeint_peer",
+                  "Chapter 6: RK4 on the report scene against Boost.Odeint, as whole programs and as integrators\n"
+                  "on the same forces. The book's figures use --K 200 --damping 20 --dt 1e-4 --t-end 1.");
+  bool plain_only = false;
+  int runs = 3;
+  std::string ch03 = (std::filesystem::path(argv[0]).parent_path() / "ch03_runge_kutta").string();
+  cli.add_value("--program", "plain", "run only the program written with odeint alone (for timing it as a process)",
+                [&](const std::string& s) {
+                  if (s != "plain") throw InputError("expected 'plain'");
+                  plain_only = true;
+                });
+  cli.add_value("--runs", "N", "timed runs of each program, the fastest kept (default 3)", [&](const std::string& s) {
+    const long long n = parse_integer(s);
+    if (n < 1 || n > 100) throw InputError("expected a whole number from 1 to 100");
+    runs = static_cast<int>(n);
+  });
+  cli.add_value("--ch03", "PATH", "the ch03_runge_kutta program to time (default: beside this one)",
+                [&](const std::string& s) { ch03 = s; });
+  return run_program(cli.program(), [&] {
+    const Options opt = cli.parse(argc, argv);
+    const SceneParams& s = opt.scene;
+    if (s.pins != PinSet::corners || s.damping_model != DampingModel::projected || !s.families.contains(SpringFamily::structural) ||
+        !s.families.contains(SpringFamily::shear) || !s.families.contains(SpringFamily::flexion))
+      throw InputError("the odeint program models the report scene only: corners pinned, projected damper, all springs");
+    const double h = opt.run.dt, T = opt.run.t_end;
+    if (plain_only) {
+      const ch06::PlainOdeintCloth cloth = plain_cloth(s);
+      std::printf("lowest z at T = %g s: %.9g m\n", T, cloth.lowest_z(cloth.run(h, T)));
+      return 0;
+    }
+    prepare_output_dir(opt.run.out_dir);
+    const std::string dir = opt.run.out_dir;
+    const std::string K = format_number(s.stiffness), D = format_number(s.damping), H = format_number(h),
+                      TT = format_number(T), M = std::to_string(s.grid.M), N = std::to_string(s.grid.N);
+
+    // 1. Whole programs, each as a process.
+    const std::vector<std::string> plain_args = {argv[0], "--program", "plain", "--grid", M + "x" + N, "--K", K,
+                                                 "--damping", D, "--dt", H, "--t-end", TT};
+    const std::vector<std::string> ch03_args = {ch03, "--grid", M + "x" + N, "--K", K, "--damping", D, "--dt", H,
+                                                "--t-end", TT, "--out", dir + "/ch03_run"};
+    ch06::Seconds plain_process{INFINITY, INFINITY}, ch03_process{INFINITY, INFINITY};
+    for (int k = 0; k < runs; ++k) {  // alternated, so that a busy spell of the machine hits both
+      const ch06::Seconds a = time_process(plain_args), b = time_process(ch03_args);
+      plain_process = {std::min(plain_process.wall, a.wall), std::min(plain_process.cpu, a.cpu)};
+      ch03_process = {std::min(ch03_process.wall, b.wall), std::min(ch03_process.cpu, b.cpu)};
+    }
+
+    // 2. The integrators alone on the core's forces, and the reader's program in this process for reference.
+    const Scene scene(s);
+    ForceField field(scene);
+    Vector x_odeint, x_core;
+    ch06::PlainOdeintCloth::State y_plain;
+    const ch06::PlainOdeintCloth plain = plain_cloth(s);
+    const ch06::Seconds odeint_core =
+        best_of(runs, [&] { return time_in_process([&] { x_odeint = odeint_on_core_forces(field, h, T); }); });
+    const ch06::Seconds engine = best_of(runs, [&] { return time_in_process([&] { x_core = core_engine(field, h, T); }); });
+    const ch06::Seconds plain_in_process = best_of(runs, [&] { return time_in_process([&] { y_plain = plain.run(h, T); }); });
+
+    const auto row = [](const char* what, const ch06::Seconds& t, const ch06::Seconds& ref) {
+      char line[256];
+      std::snprintf(line, sizeof line, "| %s | %.3f | %.3f | %.2f |\n", what, t.wall, t.cpu, t.cpu / ref.cpu);
+      return std::string(line);
+    };
+    std::string table = "RK4, h = " + H + " s over T = " + TT + " s on the " + M + " x " + N + " cloth with K = " + K +
+                        " N/m, D = " + D + " N s/m; the fastest of " + std::to_string(runs) +
+                        " runs; ratio of CPU times.\n\n| program | wall [s] | CPU [s] | ratio |\n|---|---|---|---|\n";
+    table += row("written with Boost.Odeint alone (process)", plain_process, plain_process);
+    table += row("ch03_runge_kutta with its outputs (process)", ch03_process, plain_process);
+    table += "\n| integrator on cloth::ForceField | wall [s] | CPU [s] | ratio |\n|---|---|---|---|\n";
+    table += row("odeint runge_kutta4", odeint_core, odeint_core);
+    table += row("generic Butcher-tableau engine, rk4", engine, odeint_core);
+    OutputFile md(dir + "/odeint_comparison.md");
+    std::fputs(table.c_str(), md.get());
+    md.commit();
+    std::fputs(table.c_str(), stdout);
+    write_key_values(dir + "/odeint_comparison.txt",
+                     {{"plain_process_cpu_seconds", format_number(plain_process.cpu)},
+                      {"ch03_process_cpu_seconds", format_number(ch03_process.cpu)},
+                      {"ch03_over_plain", format_number(ch03_process.cpu / plain_process.cpu, 3)},
+                      {"plain_in_process_cpu_seconds", format_number(plain_in_process.cpu)},
+                      {"odeint_core_forces_cpu_seconds", format_number(odeint_core.cpu)},
+                      {"engine_cpu_seconds", format_number(engine.cpu)},
+                      {"engine_over_odeint", format_number(engine.cpu / odeint_core.cpu, 3)},
+                      {"lowest_z_plain", format_number(plain.lowest_z(y_plain), 9)},
+                      {"lowest_z_odeint_core", format_number(lowest_z(x_odeint), 9)},
+                      {"lowest_z_engine", format_number(lowest_z(x_core), 9)}});
+    std::printf("lowest z at T: odeint alone %.9g m, odeint on the core's forces %.9g m, core engine %.9g m\n",
+                plain.lowest_z(y_plain), lowest_z(x_odeint), lowest_z(x_core));
+    return 0;
+  });
+}

@@ -1,0 +1,339 @@
+// Chapter 9: any diagonally implicit Runge-Kutta method, given by its Butcher tableau, and BDF2 on the report's
+// cloth, every stage solved by the one Newton machinery of the library; step control for an embedded pair; and
+// the chapter's studies (energy on the undamped cloth, observed orders, work against precision on the stiff one).
+#include "program/command_line.hpp"
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
+#include "integrators/bdf2.hpp"
+#include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/method_registry.hpp"
+#include "integrators/implicit_step_control.hpp"
+#include "integrators/simulate.hpp"
+#include "program/output.hpp"
+#include "program/run_outputs.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+using namespace cloth;
+
+namespace {
+
+const char* treatment_name(StiffnessTreatment t) {
+  switch (t) {
+    case StiffnessTreatment::exact: return "exact";
+    case StiffnessTreatment::symmetric: return "symmetric";
+    case StiffnessTreatment::definite: return "definite";
+  }
+  return "?";
+}
+
+// What the command line chose: a tableau or BDF2, Newton's settings, and step control.
+struct MethodChoice {
+  std::string argument = "sdirk2";  // --tableau as given
+  bool bdf2 = false;
+  ImplicitTableau tableau;
+  NewtonSettings newton;
+  std::optional<double> tol;  // --tol: step control
+};
+
+std::unique_ptr<Stepper> make_method(const MethodChoice& choice, ForceField& field) {
+  if (choice.bdf2) return std::make_unique<Bdf2>(field, choice.newton);
+  return std::make_unique<DiagonallyImplicitRungeKutta>(field, choice.tableau, choice.newton);
+}
+
+// run.txt's lines for the method: the tableau, Newton, the linear algebra, the work.
+std::vector<std::pair<std::string, std::string>> method_lines(const MethodChoice& choice, const Stepper& stepper,
+                                                              const RunResult& result, const NewtonSettings& newton) {
+  std::vector<std::pair<std::string, std::string>> lines;
+  if (choice.bdf2) {
+    lines.emplace_back("tableau", "bdf2 (multistep)");
+    lines.emplace_back("order", "2");
+  } else {
+    lines.emplace_back("tableau", choice.tableau.method.name);
+    lines.emplace_back("tableau_source", choice.tableau.source);
+    lines.emplace_back("stages", std::to_string(choice.tableau.method.stages()));
+    lines.emplace_back("order", std::to_string(choice.tableau.method.order));
+  }
+  lines.emplace_back("newton", newton_variant_name(newton.one_iteration() ? NewtonVariant::one : newton.variant));
+  lines.emplace_back("linear_solver", linear_solver_name(resolve(newton, stepper.field().scene()).solver));
+  lines.emplace_back("jacobian", treatment_name(newton.treatment));
+  lines.emplace_back("newton_tol", format_number(newton.tolerance, 10));
+  lines.emplace_back("newton_max_iter", std::to_string(newton.max_iterations));
+  lines.emplace_back("linear_solves", std::to_string(result.counters.linear_solves));
+  lines.emplace_back("line_search_halvings", std::to_string(result.counters.line_search_halvings));
+  return lines;
+}
+
+// One run of the chosen method on `params`, outputs in run.out_dir; returns report()'s exit status.
+int run_cloth(const SceneParams& params, const RunSettings& run, const MethodChoice& choice,
+              const std::string& program, RunResult* kept = nullptr) {
+  const Scene scene(params);
+  validate(choice.newton, scene);  // before anything is written
+  ForceField field(scene);
+  const std::unique_ptr<Stepper> stepper = make_method(choice, field);
+  prepare_output_dir(run.out_dir);
+  RunResult result;
+  std::vector<std::pair<std::string, std::string>> extra;
+  if (choice.tol) {
+    StepControl control;
+    control.tolerance = *choice.tol;
+    ControlledRun controlled =
+        simulate_controlled(static_cast<DiagonallyImplicitRungeKutta&>(*stepper), run, control);
+    result = std::move(controlled.result);
+    extra = method_lines(choice, *stepper, result, choice.newton);
+    extra.emplace_back("tol", format_number(*choice.tol, 10));
+    extra.emplace_back("rejected_steps", std::to_string(controlled.rejected_steps));
+    extra.emplace_back("newton_failures", std::to_string(controlled.newton_failures));
+    extra.emplace_back("smallest_step", format_number(controlled.smallest_step, 6));
+    extra.emplace_back("largest_step", format_number(controlled.largest_step, 6));
+  } else {
+    result = simulate(*stepper, run);
+    extra = method_lines(choice, *stepper, result, choice.newton);
+    extra.emplace_back("rejected_steps", "0");
+  }
+  write_outputs(result, *stepper, run, extra);
+  const int status = report(result, *stepper, program);
+  if (result.steps > 0)
+    std::printf("  Newton iterations per step: %.3f (%lld in %lld steps), %lld factorizations, %lld linear solves\n",
+                static_cast<double>(result.counters.newton_iterations) / static_cast<double>(result.steps),
+                result.counters.newton_iterations, result.steps, result.counters.factorizations,
+                result.counters.linear_solves);
+  if (kept) *kept = std::move(result);
+  return status;
+}
+
+// The methods the studies compare: every built-in tableau and BDF2, with full Newton.
+std::vector<MethodChoice> study_methods(const NewtonSettings& newton) {
+  std::vector<MethodChoice> methods;
+  for (const ImplicitTableau& t : builtin_implicit_tableaus()) {
+    MethodChoice m;
+    m.argument = t.method.name;
+    m.tableau = t;
+    m.newton = newton;
+    methods.push_back(m);
+  }
+  MethodChoice b;
+  b.argument = "bdf2";
+  b.bdf2 = true;
+  b.newton = newton;
+  methods.push_back(b);
+  return methods;
+}
+
+// [energy_study]
+// Every method on the undamped cloth (D = 0) at the run's h to its T: energy.dat per method in its own folder,
+// and energy_summary.dat with E(T) / E(0) and the work.
+void energy_study(const Options& opt, const NewtonSettings& newton, const std::string& dir,
+                  const std::string& program) {
+  SceneParams p = opt.scene;
+  p.damping = 0;
+  OutputFile summary(dir + "/energy_summary.dat");
+  std::fprintf(summary.get(), "# undamped cloth, K = %g, h = %g s, T = %g s\n# method E(T)/E(0) min_E/E(0) "
+               "max_E/E(0) newton_iterations factorizations wall_seconds\n", p.stiffness, opt.run.dt, opt.run.t_end);
+  for (const MethodChoice& m : study_methods(newton)) {
+    RunSettings run = opt.run;
+    run.out_dir = dir + "/energy_" + m.argument;
+    RunResult r;
+    run_cloth(p, run, m, program, &r);
+    const double E0 = r.energy.front().energy.total();
+    double lo = E0, hi = E0;
+    for (const EnergySample& e : r.energy) lo = std::min(lo, e.energy.total()), hi = std::max(hi, e.energy.total());
+    std::fprintf(summary.get(), "%s %.6f %.6f %.6f %lld %lld %.4f\n", m.argument.c_str(),
+                 r.energy.back().energy.total() / E0, lo / E0, hi / E0, r.counters.newton_iterations,
+                 r.counters.factorizations, r.wall_seconds);
+  }
+  summary.commit();
+}
+// [energy_study]
+
+// The free particles' final positions of RK4 at h_ref: the reference of the accuracy studies. RK4 is explicit and
+// shares no code with the implicit methods; at h_ref its error is far below theirs.
+Vector reference_positions(const SceneParams& p, double T, double h_ref) {
+  const Scene scene(p);
+  ForceField field(scene);
+  ExplicitRungeKutta rk4(field, tableau_from_argument("rk4"));
+  RunSettings run;
+  run.dt = h_ref;
+  run.t_end = T;
+  const RunResult r = simulate(rk4, run, false);
+  if (r.status != RunStatus::ok) throw InputError("the RK4 reference failed: " + r.message);
+  return r.x;
+}
+
+// [work_precision]
+// Each method at the steps `hs` on `p` to T: the largest position error at T against `reference`, the wall time
+// (best of `repeats`), and the work; one line per run in `path`, one gnuplot index per method and variant.
+void work_precision(const SceneParams& p, double T, const std::vector<double>& hs, const Vector& reference,
+                    const NewtonSettings& newton, const std::vector<NewtonVariant>& variants, const std::string& path,
+                    int repeats) {
+  OutputFile out(path);
+  std::fprintf(out.get(), "# K = %g, D = %g, T = %g s; error = max |x - x_ref| over the free particles [m]\n"
+               "# method newton h error wall_seconds newton_iterations factorizations rhs_evaluations\n",
+               p.stiffness, p.damping, T);
+  const Scene scene(p);
+  ForceField field(scene);
+  for (const NewtonVariant variant : variants) {
+    NewtonSettings s = newton;
+    s.variant = variant;
+    for (const MethodChoice& m : study_methods(s)) {
+      for (const double h : hs) {
+        RunSettings run;
+        run.dt = h;
+        run.t_end = T;
+        double best = INFINITY;
+        RunResult r;
+        for (int k = 0; k < repeats; ++k) {
+          const std::unique_ptr<Stepper> stepper = make_method(m, field);
+          r = simulate(*stepper, run, false);
+          best = std::min(best, r.wall_seconds);
+        }
+        const double error =
+            r.status == RunStatus::ok ? (r.x - reference).lpNorm<Eigen::Infinity>() : NAN;
+        std::fprintf(out.get(), "%s %s %.6g %.6e %.6f %lld %lld %lld\n", m.argument.c_str(),
+                     newton_variant_name(variant), h, error, best, r.counters.newton_iterations,
+                     r.counters.factorizations, r.counters.rhs_evaluations);
+        std::fflush(out.get());
+      }
+      std::fprintf(out.get(), "\n\n");  // one gnuplot index per method and variant
+    }
+  }
+  out.commit();
+}
+// [work_precision]
+
+// The chapter's studies: energy on the undamped cloth; observed orders on (200, 20) over T = 0.4 s; work against
+// precision on the stiff cloth (5000, 20). --quick keeps the plots target fast (fewer steps, one timing).
+void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, const std::string& program) {
+  const std::string dir = opt.run.out_dir;
+  prepare_output_dir(dir);
+  energy_study(opt, newton, dir, program);
+
+  SceneParams report = opt.scene;
+  report.stiffness = 200;
+  report.damping = 20;
+  const double T = 0.4;
+  const std::vector<double> hs = quick ? std::vector<double>{0.02, 0.01, 0.005}
+                                       : std::vector<double>{0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125};
+  NewtonSettings tight = newton;
+  tight.tolerance = 1e-12;  // Newton's error far below the truncation error: the orders are the methods'
+  work_precision(report, T, hs, reference_positions(report, T, 1e-5), tight, {NewtonVariant::full},
+                 dir + "/orders.dat", 1);
+
+  SceneParams stiff = report;
+  stiff.stiffness = 5000;
+  work_precision(stiff, T, hs, reference_positions(stiff, T, 1e-5), newton,
+                 {NewtonVariant::full, NewtonVariant::modified}, dir + "/work_precision.dat", quick ? 1 : 3);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MethodChoice choice;
+  std::optional<StiffnessTreatment> jacobian;
+  std::optional<NewtonVariant> variant;
+  bool max_iterations_given = false;
+  bool want_report_runs = false, quick = false;
+  CommandLine cli("ch09_implicit_runge_kutta",
+                  "Chapter 9: a diagonally implicit Runge-Kutta method from its Butcher tableau, or BDF2, on the\n"
+                  "report's cloth; each stage solved by Newton's method on M - h a_ii df/dv - (h a_ii)^2 df/dx.");
+  std::string names;
+  for (const ImplicitTableau& t : builtin_implicit_tableaus()) names += t.method.name + ", ";
+  cli.add_value("--tableau", "NAME|FILE|bdf2",
+                "a built-in diagonally implicit tableau (" + names + "default sdirk2), a tableau file, or bdf2",
+                [&](const std::string& s) { choice.argument = s; });
+  cli.add_value("--tol", "TOL",
+                "step control on the embedded error estimate, max |e| / (1 + |y|) <= TOL (embedded pairs only: "
+                "trbdf2); --dt is then the first step",
+                [&](const std::string& s) {
+                  const double t = parse_number(s);
+                  if (!(t > 0) || t >= 1) throw InputError("expected a number in (0, 1), got " + s);
+                  choice.tol = t;
+                });
+  cli.add_value("--newton", "full|modified|one",
+                "full Newton, modified Newton (a factorization kept while it converges fast), or Baraff & Witkin's "
+                "one iteration (default full)",
+                [&](const std::string& s) {
+                  if (s == "full") variant = NewtonVariant::full;
+                  else if (s == "modified") variant = NewtonVariant::modified;
+                  else if (s == "one") variant = NewtonVariant::one;
+                  else throw InputError("unknown Newton variant '" + s + "': expected full, modified or one");
+                });
+  cli.add_value("--linear-solver", "ldlt|ldu|cg|lu",
+                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, or Eigen's pivoting sparse LU (default: ldu "
+                "for the exact Jacobian of a damped cloth, ldlt otherwise)",
+                [&](const std::string& s) {
+                  if (s == "ldlt") choice.newton.solver = LinearSolverKind::ldlt;
+                  else if (s == "ldu") choice.newton.solver = LinearSolverKind::ldu;
+                  else if (s == "cg") choice.newton.solver = LinearSolverKind::cg;
+                  else if (s == "lu") choice.newton.solver = LinearSolverKind::lu;
+                  else throw InputError("unknown solver '" + s + "': expected ldlt, ldu, cg or lu");
+                });
+  cli.add_value("--jacobian", "exact|symmetric|definite",
+                "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
+                "(Choi & Ko 2002; the default with cg)",
+                [&](const std::string& s) {
+                  if (s == "exact") jacobian = StiffnessTreatment::exact;
+                  else if (s == "symmetric") jacobian = StiffnessTreatment::symmetric;
+                  else if (s == "definite") jacobian = StiffnessTreatment::definite;
+                  else throw InputError("unknown Jacobian '" + s + "': expected exact, symmetric or definite");
+                });
+  cli.add_value("--newton-tol", "TOL", "Newton's stopping tolerance on |dv| and |r| (default 1e-8)",
+                [&](const std::string& s) {
+                  const double t = parse_number(s);
+                  if (!(t > 0) || t >= 1) throw InputError("expected a number in (0, 1), got " + s);
+                  choice.newton.tolerance = t;
+                });
+  cli.add_value("--newton-max-iter", "N", "Newton iterations before a stage fails (default 20)",
+                [&](const std::string& s) {
+                  const long long n = parse_integer(s);
+                  if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
+                  choice.newton.max_iterations = static_cast<int>(n);
+                  max_iterations_given = true;
+                });
+  cli.add_switch("--report-runs",
+                 "the chapter's studies: every method on the undamped cloth, orders on (K, D) = (200, 20) and work "
+                 "against precision on (5000, 20) over T = 0.4 s (exit 0 even when a run fails)",
+                 [&] { want_report_runs = true; });
+  cli.add_switch("--quick", "with --report-runs: fewer step sizes and one timing per run (the plots target)",
+                 [&] { quick = true; });
+  return run_program(cli.program(), [&] {
+    const Options opt = cli.parse(argc, argv);
+    if (choice.argument == "bdf2") {
+      choice.bdf2 = true;
+    } else {
+      try {
+        choice.tableau = implicit_tableau_from_argument(choice.argument);
+      } catch (const InputError& e) {
+        throw InputError(std::string("--tableau: ") + e.what() + "; bdf2 names the multistep method");
+      }
+    }
+    if (choice.tol && (choice.bdf2 || !choice.tableau.has_embedded()))
+      throw InputError("--tol: step control needs an embedded pair, and " + choice.argument +
+                       " has no embedded weights: use --tableau trbdf2, or leave --tol out for fixed steps");
+    if (variant) choice.newton.variant = *variant;
+    if (variant == NewtonVariant::one && max_iterations_given && choice.newton.max_iterations != 1)
+      throw InputError("--newton-max-iter: --newton one takes exactly one iteration; leave --newton-max-iter out");
+    // Without --jacobian, the most exact matrix the chosen solver can take (as in Chapter 4).
+    const bool damped = Scene(opt.scene).has_damping();
+    if (jacobian) choice.newton.treatment = *jacobian;
+    else if (choice.newton.solver == LinearSolverKind::cg) choice.newton.treatment = StiffnessTreatment::definite;
+    else if (choice.newton.solver == LinearSolverKind::ldlt && damped)
+      choice.newton.treatment = StiffnessTreatment::symmetric;
+    else choice.newton.treatment = StiffnessTreatment::exact;
+    try {
+      validate(choice.newton, Scene(opt.scene));
+    } catch (const InputError& e) {
+      throw InputError(std::string("--linear-solver / --jacobian: ") + e.what());
+    }
+    if (want_report_runs) {
+      report_runs(opt, choice.newton, quick, cli.program());
+      return 0;
+    }
+    return run_cloth(opt.scene, opt.run, choice, cli.program());
+  });
+}

@@ -1,0 +1,55 @@
+// Chapter 10's measuring tools: the chapter's methods by name, a run to T with the error at T against a reference,
+// thread-CPU timing, and the fabric scenes of the chapter (the same square metre at any resolution and stiffness).
+#pragma once
+
+#include "integrators/stepper.hpp"
+#include "model/scene.hpp"
+#include "program/output.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ch10 {
+
+/// The chapter's fabric: a square of side 0.95 m with n particles per side, areal density 0.25 kg/m^2 (so
+/// m = 6.25e-4 kg at n = 20), one stiffness K for every family, D = 0.01, corners pinned, released from rest.
+cloth::SceneParams fabric(int n, double K);
+
+/// The methods of the chapter: symplectic_euler, rk4, ie_newton_direct, ie_newton_cg, ie_1newton_direct,
+/// ie_1newton_cg, local_global_5, local_global_10, local_global_20, local_global_50.
+std::unique_ptr<cloth::Stepper> make_method(const std::string& name, cloth::ForceField& field);
+bool is_explicit(const std::string& name);
+/// How the page names a method ("implicit Euler, 1 Newton iteration, direct").
+std::string label(const std::string& name);
+
+/// Thread CPU seconds (not counting time spent waiting for a core on a shared machine).
+double cpu_seconds();
+
+/// The final positions of a run of `steps` equal steps to T, or ok = false with where it stopped.
+struct Run {
+  cloth::Vector x;
+  bool ok = true;
+  std::string message;
+  double seconds = 0;  ///< thread CPU seconds of the (best) run
+  cloth::StepCounters counters;
+};
+/// Runs `method` on `scene` to T; when the run is shorter than `repeat_below` seconds it is repeated (up to 5
+/// runs in all) and the fastest time is kept: on a busy machine the minimum is the least disturbed.
+Run run_to(const cloth::Scene& scene, const std::string& method, double T, long long steps,
+           double repeat_below = 0.2);
+
+/// Largest distance between corresponding particles of two free-particle position vectors [m].
+double max_distance(const cloth::Vector& a, const cloth::Vector& b);
+
+/// A reference for T: RK4 with `steps` steps; when `check` it is compared with the 3/8 rule at twice as many
+/// steps and `agreement` is their largest difference (else -1).
+cloth::Vector reference(const cloth::Scene& scene, double T, long long steps, bool check, double& agreement);
+
+/// Writes `text` to DIR/name through cloth::OutputFile (whole or not at all).
+void write_text(const std::string& dir, const std::string& name, const std::string& text);
+
+/// printf into a std::string.
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+
+}  // namespace ch10

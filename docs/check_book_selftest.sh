@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The browser check's test: docs/check_book.sh on docs/check_book_fixture/ must exit 1 and report each defect of
+# bad.html (a formula error, a raw formula command, a missing image, a figure too wide at both window widths, a
+# table too wide at 800 px only, a link to a missing file, a link to a missing anchor) and nothing else; the good
+# page (MathJax with its AMS extensions, a figure and table that fit, links that resolve) must pass.
+#   docs/check_book_selftest.sh [MATHJAX_DIR]      (default /usr/share/javascript/mathjax)
+set -uo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+mathjax=${1:-/usr/share/javascript/mathjax}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cp -r "$here/check_book_fixture" "$work/html"
+ln -s "$mathjax" "$work/html/mathjax"
+
+"$here/check_book.sh" "$work/html" > "$work/out.txt" 2>&1
+status=$?
+cat "$work/out.txt"
+failed=0
+if [ "$status" != 1 ]; then echo "selftest: expected exit status 1, got $status"; failed=1; fi
+expect() {
+  if ! grep -qE -- "$1" "$work/out.txt"; then echo "selftest: not reported: $1"; failed=1; fi
+}
+expect "^bad\.html: formula error 'Undefined control sequence \\\\tfrac'"
+expect "^bad\.html: raw formula command in the text: .*\\\\f\\\$d \+ 1"
+expect "^bad\.html: image 'missing\.png' is missing"
+expect "^bad\.html: figure 'wide\.svg' is 2000 px wide, wider than the [0-9]+ px text column at a 1280 px window"
+expect "^bad\.html: figure 'wide\.svg' is 2000 px wide, wider than the [0-9]+ px text column at a 800 px window"
+expect "^bad\.html: table 'a table for wide windows only' is 1100 px wide, .* at a 800 px window"
+expect "^bad\.html: link 'nowhere\.html': no such file"
+expect "^bad\.html: link 'index\.html#no-such-anchor': index\.html has no anchor 'no-such-anchor'"
+expect ": 8 problems$"
+if [ "$failed" = 0 ]; then echo "selftest: every defect found, nothing else"; fi
+exit "$failed"

@@ -1,0 +1,99 @@
+// The DIRK engine: stages one after another, each an implicit Euler equation for its velocity.
+#include "integrators/diagonally_implicit_runge_kutta.hpp"
+
+namespace cloth {
+
+DiagonallyImplicitRungeKutta::DiagonallyImplicitRungeKutta(ForceField& field, ImplicitTableau tableau,
+                                                           NewtonSettings settings)
+    : Stepper(field), tableau_(std::move(tableau)), newton_(field, settings, counters_) {
+  validate(tableau_);
+  const int s = tableau_.method.stages();
+  const int n = field.dof_count();
+  V_.assign(static_cast<std::size_t>(s), Vector::Zero(n));
+  F_.assign(static_cast<std::size_t>(s), Vector::Zero(n));
+  x_tilde_.resize(n), v_tilde_.resize(n);
+  if (tableau_.has_embedded()) error_x_ = Vector::Zero(n), error_v_ = Vector::Zero(n);
+  // F_i is needed when a later stage uses it, when the weights combine it (a stiffly accurate method takes the
+  // last stage instead), or when the embedded weights do. Otherwise its evaluation is skipped.
+  const Eigen::MatrixXd& A = tableau_.method.A;
+  for (int i = 0; i < s; ++i) {
+    bool used = !tableau_.stiffly_accurate() && tableau_.method.b[i] != 0.0;
+    for (int j = i + 1; j < s; ++j) used = used || A(j, i) != 0.0;
+    if (tableau_.has_embedded()) used = used || tableau_.b_hat[i] != tableau_.method.b[i];
+    need_force_.push_back(used);
+  }
+}
+
+std::string DiagonallyImplicitRungeKutta::name() const {
+  return tableau_.method.name + "_" + newton_variant_name(settings().one_iteration() ? NewtonVariant::one
+                                                                                      : settings().variant) +
+         "_" + linear_solver_name(settings().solver);
+}
+
+bool DiagonallyImplicitRungeKutta::step(double h, Vector& x, Vector& v) {
+  const ButcherTableau& t = tableau_.method;
+  const int s = t.stages();
+  const double m = field_.scene().params().mass;
+  newton_.begin_step();
+  // [dirk_stages]
+  for (int i = 0; i < s; ++i) {
+    const auto si = static_cast<std::size_t>(i);
+    // The stage's starting point: x~ = x0 + h sum_{j<i} a_ij V_j, v~ = v0 + (h/m) sum_{j<i} a_ij F_j.
+    x_tilde_ = x;
+    v_tilde_ = v;
+    for (int j = 0; j < i; ++j) {
+      const double a = t.A(i, j);
+      if (a == 0.0) continue;
+      x_tilde_ += (h * a) * V_[static_cast<std::size_t>(j)];
+      v_tilde_ += (h * a / m) * F_[static_cast<std::size_t>(j)];
+    }
+    const double gamma = h * t.A(i, i);
+    if (gamma == 0.0) {
+      // An explicit stage (the first of an ESDIRK): its value is its starting point.
+      V_[si] = v_tilde_;
+      if (need_force_[si] || i + 1 == s) {
+        field_.forces(x_tilde_, V_[si], F_[si]);
+        ++counters_.rhs_evaluations;
+      }
+      continue;
+    }
+    // The guess: the previous stage's velocity (v0 for the first stage).
+    if (i > 0) V_[si] = V_[si - 1];
+    else V_[si] = v;
+    if (!newton_.solve(x_tilde_, v_tilde_, gamma, V_[si], need_force_[si])) {
+      failure_ = newton_.failure();
+      if (s > 1) failure_.reason = "stage " + std::to_string(i + 1) + ": " + failure_.reason;
+      return false;
+    }
+    if (need_force_[si]) F_[si] = newton_.force();
+  }
+  // [dirk_stages]
+  if (tableau_.has_embedded()) {
+    error_x_.setZero();
+    error_v_.setZero();
+    for (int i = 0; i < s; ++i) {
+      const double e = t.b[i] - tableau_.b_hat[i];
+      if (e == 0.0) continue;
+      error_x_ += (h * e) * V_[static_cast<std::size_t>(i)];
+      error_v_ += (h * e / m) * F_[static_cast<std::size_t>(i)];
+    }
+  }
+  if (tableau_.stiffly_accurate()) {
+    // The last stage is the step: x1 = x~_s + h a_ss V_s, as Newton computed it.
+    const auto last = static_cast<std::size_t>(s - 1);
+    if (t.A(s - 1, s - 1) != 0.0) x = newton_.position();
+    else x = x_tilde_;
+    v = V_[last];
+  } else {
+    for (int i = 0; i < s; ++i) {
+      const double b = t.b[i];
+      if (b == 0.0) continue;
+      x += (h * b) * V_[static_cast<std::size_t>(i)];
+      v += (h * b / m) * F_[static_cast<std::size_t>(i)];
+    }
+  }
+  ++counters_.steps;
+  return true;
+}
+
+}  // namespace cloth

@@ -1,0 +1,46 @@
+// Any diagonally implicit Runge-Kutta method on the cloth (Chapter 9), given by its tableau: each stage is one
+// stage equation solved by StageNewton, on the cloth's second-order structure (stage velocities as unknowns).
+#pragma once
+
+#include "integrators/implicit_tableaus.hpp"
+#include "integrators/stage_newton.hpp"
+
+#include <string>
+#include <vector>
+
+namespace cloth {
+
+/// One step of an s-stage DIRK method on x' = v, M v' = f(x, v). Stage i has velocity V_i and position
+///   X_i = x~_i + h a_ii V_i,   x~_i = x0 + h sum_{j<i} a_ij V_j,
+/// and its velocity solves M (V_i - v~_i) = h a_ii f(X_i, V_i), v~_i = v0 + h M^{-1} sum_{j<i} a_ij F_j, with
+/// F_j = f(X_j, V_j): the implicit Euler equation of Chapter 4 with h a_ii for h, started from (x~_i, v~_i). The
+/// step is x1 = x0 + h sum_i b_i V_i, v1 = v0 + h M^{-1} sum_i b_i F_i, or the last stage when the tableau is
+/// stiffly accurate.
+class DiagonallyImplicitRungeKutta : public Stepper {
+ public:
+  /// The tableau must pass validate(ImplicitTableau); the settings validate(NewtonSettings). Throws InputError.
+  DiagonallyImplicitRungeKutta(ForceField& field, ImplicitTableau tableau, NewtonSettings settings);
+  [[nodiscard]] std::string name() const override;
+  bool step(double h, Vector& x, Vector& v) override;
+
+  [[nodiscard]] const ImplicitTableau& tableau() const { return tableau_; }
+  [[nodiscard]] const NewtonSettings& settings() const { return newton_.settings(); }
+  /// |r|_inf of the last stage equation solved (each Newton iteration, then after its last update).
+  [[nodiscard]] const std::vector<double>& residual_history() const { return newton_.residual_history(); }
+  [[nodiscard]] const StageNewton::Timing& timing() const { return newton_.timing(); }
+  void reset_timing() { newton_.reset_timing(); }
+
+  /// For an embedded pair, after a step: the difference between the step and its embedded companion, in
+  /// positions and velocities (h sum_i (b_i - b^_i) V_i and h M^{-1} sum_i (b_i - b^_i) F_i).
+  [[nodiscard]] const Vector& error_positions() const { return error_x_; }
+  [[nodiscard]] const Vector& error_velocities() const { return error_v_; }
+
+ private:
+  ImplicitTableau tableau_;
+  StageNewton newton_;
+  std::vector<Vector> V_, F_;   // stage velocities and forces
+  std::vector<bool> need_force_;  // whether F_i is used (by a later stage or the weights)
+  Vector x_tilde_, v_tilde_, error_x_, error_v_;
+};
+
+}  // namespace cloth

@@ -1,0 +1,43 @@
+// The diagonally implicit Butcher tableaus of Chapter 9 (a_ij = 0 for j > i, the diagonal free): the built-in
+// methods from their sources, an embedded pair for step control, their validation by the order conditions, and
+// tableau files read in Chapter 3's format.
+#pragma once
+
+#include "integrators/butcher_tableau.hpp"
+
+#include <string>
+#include <vector>
+
+namespace cloth {
+
+/// A diagonally implicit Runge-Kutta method: its tableau, and for an embedded pair the second weights b^ whose
+/// combination of the same stages has another order, so that their difference estimates the local error.
+struct ImplicitTableau {
+  ButcherTableau method;      ///< A lower triangular, diagonal free
+  Eigen::VectorXd b_hat;      ///< embedded weights; empty when the method has none
+  int embedded_order = 0;     ///< the order of b^ (0 without one)
+  std::string source;         ///< where the coefficients come from (author, year)
+
+  [[nodiscard]] bool has_embedded() const { return b_hat.size() > 0; }
+  /// b^T is A's last row: the step's result is the last stage's value (no weights applied), which keeps the
+  /// stiff decay of the last stage (Hairer & Wanner 1996, IV.6).
+  [[nodiscard]] bool stiffly_accurate() const;
+  /// The first stage has a_11 = 0: it is the step's starting point, explicit (an ESDIRK).
+  [[nodiscard]] bool explicit_first_stage() const;
+};
+
+/// Checks that the engine of Chapter 9 can run the tableau and that it has the order it claims: square A, lower
+/// triangular (nothing above the diagonal: a fully implicit tableau such as Gauss or Radau IIA couples its
+/// stages in one system of s times the unknowns, which this engine does not solve), a_ii >= 0 (a negative
+/// diagonal would solve a stage backward in time), c_i = sum_j a_ij, and the order conditions through the
+/// claimed order, for b and for b^. Throws InputError naming what fails.
+void validate(const ImplicitTableau& tableau);
+
+/// backward_euler, implicit_midpoint, trapezoid, sdirk2, sdirk3, trbdf2.
+const std::vector<ImplicitTableau>& builtin_implicit_tableaus();
+
+/// A built-in implicit tableau by name, or else a tableau file (Chapter 3's format) by path, validated. Throws
+/// InputError listing the accepted names when neither exists, or saying what is wrong with the file.
+ImplicitTableau implicit_tableau_from_argument(const std::string& name_or_path);
+
+}  // namespace cloth

@@ -1,0 +1,273 @@
+// Newton's method for one implicit stage, with the linear solver chosen for the matrix it gets and the three
+// Newton variants of Chapter 9 (full, modified, one iteration).
+#include "integrators/stage_newton.hpp"
+
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace cloth {
+
+const NameTable<LinearSolverKind>& linear_solvers() {
+  static const NameTable<LinearSolverKind> table(
+      "linear solver", {{LinearSolverKind::ldlt, "ldlt"}, {LinearSolverKind::ldu, "ldu"}, {LinearSolverKind::cg, "cg"},
+                        {LinearSolverKind::lu, "lu"}, {LinearSolverKind::automatic, "automatic"}});
+  return table;
+}
+
+const char* linear_solver_name(LinearSolverKind kind) { return linear_solvers().name(kind); }
+
+const NameTable<NewtonVariant>& newton_variants() {
+  static const NameTable<NewtonVariant> table(
+      "Newton variant", {{NewtonVariant::full, "full"}, {NewtonVariant::modified, "modified"}, {NewtonVariant::one, "one"}});
+  return table;
+}
+
+const char* newton_variant_name(NewtonVariant variant) { return newton_variants().name(variant); }
+
+NewtonSettings resolve(NewtonSettings settings, const Scene& scene) {
+  if (settings.solver == LinearSolverKind::automatic)
+    settings.solver = settings.treatment == StiffnessTreatment::exact && scene.has_damping() ? LinearSolverKind::ldu
+                                                                                              : LinearSolverKind::ldlt;
+  return settings;
+}
+
+void validate(const NewtonSettings& settings, const Scene& scene) {
+  const NewtonSettings s = resolve(settings, scene);
+  if (!(s.tolerance > 0) || !std::isfinite(s.tolerance))
+    throw InputError("Newton tolerance: expected a finite number > 0");
+  if (s.max_iterations < 1) throw InputError("Newton iteration limit: expected a whole number >= 1");
+  if (s.solver == LinearSolverKind::cg && s.treatment != StiffnessTreatment::definite)
+    throw InputError("linear solver cg needs a symmetric positive definite matrix: use the definite Jacobian "
+                     "treatment with it, or linear solver ldlt, ldu or lu");
+  if (s.solver == LinearSolverKind::ldlt && s.treatment == StiffnessTreatment::exact && scene.has_damping())
+    throw InputError("linear solver ldlt needs a symmetric matrix, and the exact Jacobian of a damped cloth is "
+                     "not: use linear solver ldu or lu, or the symmetric or definite Jacobian treatment");
+}
+
+StageNewton::StageNewton(ForceField& field, NewtonSettings settings, StepCounters& counters)
+    : field_(field), settings_(resolve(settings, field.scene())), counters_(counters), A_(field.pattern()),
+      cg_(field.dof_count()) {
+  validate(settings_, field.scene());
+  const int n = field.dof_count();
+  x1_.resize(n), f_.resize(n), r_.resize(n), dv_.resize(n);
+  warm_dv_ = Vector::Zero(n);
+  residuals_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 2);
+  // The pattern never changes, so the fill-reducing ordering and the symbolic factorization are done once.
+  if (settings_.solver == LinearSolverKind::ldlt) block_.analyze(A_, BlockLDU::Symmetry::symmetric);
+  if (settings_.solver == LinearSolverKind::ldu) block_.analyze(A_, BlockLDU::Symmetry::general);
+  if (settings_.solver == LinearSolverKind::lu) lu_.analyzePattern(A_);
+}
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Modified Newton's refresh rules, after the defaults SUNDIALS' ARKODE documents for its Newton iteration
+// (Reynolds et al., ARKODE User Guide, "Nonlinear solver methods"): a new matrix when gamma has changed by more
+// than dgmax = 20 % since the last one, or msbp = 20 steps have passed, or the iteration converges slowly.
+constexpr double gamma_change_limit = 0.2;
+constexpr int steps_between_refreshes = 20;
+// The observed contraction |dv_k| / |dv_{k-1}| above which the kept matrix is declared stale. At 0.25 every
+// iteration still gains more than half a digit; a slower chord iteration costs more force evaluations than a
+// fresh factorization saves.
+constexpr double slow_contraction = 0.25;
+}  // namespace
+
+bool StageNewton::refresh(const Vector& V, double gamma) {
+  using clock = std::chrono::steady_clock;
+  linear_failure_.clear();
+  linear_failure_kind_ = StepFailureKind::none;
+  factored_ = false;
+  auto t0 = clock::now();
+  field_.newton_matrix(x1_, V, gamma, settings_.treatment, A_);
+  ++counters_.jacobian_assemblies;
+  timing_.assembly += seconds_since(t0);
+  t0 = clock::now();
+  switch (settings_.solver) {
+    case LinearSolverKind::ldlt:
+    case LinearSolverKind::ldu:
+      ++counters_.factorizations;
+      if (!block_.factorize(A_)) {
+        timing_.factorization += seconds_since(t0);
+        linear_failure_kind_ = StepFailureKind::factorization_singular;
+        linear_failure_ = "a pivot block is singular";
+        return false;
+      }
+      break;
+    case LinearSolverKind::lu:
+      lu_.factorize(A_);
+      ++counters_.factorizations;
+      if (lu_.info() != Eigen::Success) {
+        timing_.factorization += seconds_since(t0);
+        linear_failure_kind_ = StepFailureKind::factorization_singular;
+        linear_failure_ = "SparseLU could not factorize the matrix";
+        return false;
+      }
+      break;
+    case LinearSolverKind::cg:
+      // The block-Jacobi preconditioner: each particle's 3x3 diagonal block inverted, O(n).
+      if (!cg_.compute(A_)) {
+        timing_.factorization += seconds_since(t0);
+        linear_failure_kind_ = StepFailureKind::factorization_singular;
+        linear_failure_ = "a diagonal block of the preconditioner is singular";
+        return false;
+      }
+      break;
+    case LinearSolverKind::automatic: return false;  // never reached: resolve() ran in the constructor
+  }
+  timing_.factorization += seconds_since(t0);
+  factored_ = true;
+  factored_gamma_ = gamma;
+  steps_since_refresh_ = 0;
+  return true;
+}
+
+bool StageNewton::linear_solve(const Vector& rhs, Vector& dv, bool warm_start) {
+  using clock = std::chrono::steady_clock;
+  linear_failure_.clear();
+  linear_failure_kind_ = StepFailureKind::none;
+  const auto t0 = clock::now();
+  switch (settings_.solver) {
+    case LinearSolverKind::ldlt:
+    case LinearSolverKind::ldu: {
+      // Refined until the update is as accurate as the matrix allows; an update Newton cannot trust (the
+      // factorization of an indefinite or non-symmetric J grew too much for refinement to recover) fails the
+      // step rather than steering Newton with it.
+      const double backward_error = block_.solve(A_, rhs, dv);
+      if (!(backward_error <= max_backward_error)) {
+        linear_failure_kind_ = StepFailureKind::refinement_failed;
+        linear_failure_ = "backward error " + format_number(backward_error, 2) +
+                          " after refinement (the pivoting lu solver may do better)";
+        return false;
+      }
+      break;
+    }
+    case LinearSolverKind::lu: dv = lu_.solve(rhs); break;
+    case LinearSolverKind::automatic: return false;  // never reached: resolve() ran in the constructor
+    case LinearSolverKind::cg: {
+      // The first update of a stage resembles the previous one's, so it seeds CG; later updates start at 0.
+      if (warm_start) dv = warm_dv_;
+      else dv.setZero();
+      const bool converged = cg_.solve(A_, rhs, dv, settings_.cg_tolerance, settings_.cg_max_iterations);
+      counters_.cg_iterations += cg_.iterations();
+      if (!converged) {
+        linear_failure_kind_ = StepFailureKind::cg_not_converged;
+        linear_failure_ = "CG did not converge in " + std::to_string(cg_.iterations()) + " iterations";
+        return false;
+      }
+      break;
+    }
+  }
+  ++counters_.linear_solves;
+  timing_.solve += seconds_since(t0);
+  if (!dv.allFinite()) {
+    linear_failure_kind_ = StepFailureKind::newton_not_converged;
+    linear_failure_ = "the update is not finite";
+    return false;
+  }
+  return true;
+}
+
+double StageNewton::residual_at(const Vector& x_tilde, const Vector& v_tilde, double gamma, const Vector& V) {
+  // r(V) = M (V - v~) - gamma f(x~ + gamma V, V); r_ holds -r, the right-hand side of the Newton update.
+  const double m = field_.scene().params().mass;
+  x1_ = x_tilde + gamma * V;
+  field_.forces(x1_, V, f_);
+  ++counters_.rhs_evaluations;
+  r_ = gamma * f_ - m * (V - v_tilde);
+  return r_.lpNorm<Eigen::Infinity>();
+}
+
+void StageNewton::fail_linear(int iteration, double residual) {
+  failure_ = {linear_failure_kind_, std::string("linear solve (") + linear_solver_name(settings_.solver) +
+                                        ") failed in Newton iteration " + std::to_string(iteration) +
+                                        ", |r|_inf = " + format_number(residual, 3) +
+                                        (linear_failure_.empty() ? "" : ": " + linear_failure_)};
+}
+
+bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gamma, Vector& V, bool need_force) {
+  const double m = field_.scene().params().mass;
+  const double tol = settings_.tolerance;
+  const bool modified = settings_.variant == NewtonVariant::modified && !settings_.one_iteration();
+  residuals_.clear();
+  // [newton_loop]
+  double residual = residual_at(x_tilde, v_tilde, gamma, V);
+  residuals_.push_back(residual);
+  double update = INFINITY, previous_update = INFINITY;
+  // Modified Newton keeps the matrix it has unless gamma moved, it is old, or it was never made.
+  bool stale = !modified || !factored_ || std::abs(gamma / factored_gamma_ - 1) > gamma_change_limit ||
+               steps_since_refresh_ >= steps_between_refreshes;
+  for (int k = 0;; ++k) {
+    const double scale = 1.0 + V.lpNorm<Eigen::Infinity>();
+    if (!std::isfinite(residual)) break;
+    if (residual <= tol * m * scale && (k == 0 || update <= tol * scale)) {
+      counters_.newton_iterations += k;
+      return true;
+    }
+    if (k == settings_.max_iterations) break;
+    // Newton update: J dv = -r with J = M - gamma df/dv - gamma^2 df/dx, at (x~ + gamma V, V) when fresh.
+    const bool fresh = stale;
+    if (fresh && !refresh(V, gamma)) {
+      fail_linear(k + 1, residual);
+      counters_.newton_iterations += k + 1;
+      return false;
+    }
+    stale = !modified;
+    if (!linear_solve(r_, dv_, k == 0)) {
+      fail_linear(k + 1, residual);
+      counters_.newton_iterations += k + 1;
+      return false;
+    }
+    if (k == 0) warm_dv_ = dv_;
+    if (settings_.one_iteration()) {
+      // Baraff & Witkin's linearly implicit step: one Newton iteration, accepted by design, unchecked.
+      V += dv_;
+      x1_ = x_tilde + gamma * V;
+      counters_.newton_iterations += 1;
+      if (need_force) {
+        field_.forces(x1_, V, f_);
+        ++counters_.rhs_evaluations;
+      }
+      return true;
+    }
+    V += dv_;
+    double trial = residual_at(x_tilde, v_tilde, gamma, V);
+    if (!fresh && !(trial < residual)) {
+      // A kept matrix whose update raised the residual is too far from J: undo the update, refresh next time.
+      V -= dv_;
+      residual = residual_at(x_tilde, v_tilde, gamma, V);
+      residuals_.push_back(residual);
+      stale = true;
+      continue;
+    }
+    // Backtracking line search (Dennis & Schnabel 1996, 6.3): far from the solution, or when the matrix is
+    // only an approximation of J (the symmetric and definite treatments), the full update can make the
+    // residual grow; halving it until the residual decreases keeps Newton from wandering off. Close to the
+    // solution the full step always decreases it, so quadratic convergence is untouched.
+    double step_fraction = 1.0;
+    while (!(trial < residual) && step_fraction > 1.0 / 64) {
+      step_fraction *= 0.5;
+      V -= step_fraction * dv_;  // back from V + 2a dv to V + a dv
+      trial = residual_at(x_tilde, v_tilde, gamma, V);
+      ++counters_.line_search_halvings;
+    }
+    residual = trial;
+    residuals_.push_back(residual);
+    previous_update = update;
+    update = step_fraction * dv_.lpNorm<Eigen::Infinity>();
+    // A kept matrix that contracts slowly costs more iterations than a new factorization (SUNDIALS' crdown).
+    if (modified && !fresh && update > slow_contraction * previous_update) stale = true;
+  }
+  // [newton_loop]
+  failure_ = {StepFailureKind::newton_not_converged,
+              "Newton did not converge in " + std::to_string(settings_.max_iterations) + " iterations: |r|_inf = " +
+                  format_number(residuals_.back(), 3) + ", |dv|_inf = " + format_number(update, 3)};
+  counters_.newton_iterations += settings_.max_iterations;
+  return false;
+}
+
+}  // namespace cloth

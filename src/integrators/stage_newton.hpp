@@ -1,0 +1,130 @@
+// Newton's method for one implicit stage of the cloth (Chapters 4 and 9): given x~, v~ and gamma, find the stage
+// velocity V with M (V - v~) = gamma f(x~ + gamma V, V). Implicit Euler, every stage of a diagonally implicit
+// Runge-Kutta method and BDF2 are this one equation with different x~, v~ and gamma.
+#pragma once
+
+#include "base/name_table.hpp"
+#include "integrators/block_ldu.hpp"
+#include "integrators/pcg.hpp"
+#include "integrators/stepper.hpp"
+
+#include <Eigen/SparseLU>
+#include <string>
+#include <vector>
+
+namespace cloth {
+
+/// How each Newton system J dv = -r is solved.
+enum class LinearSolverKind {
+  ldlt,  ///< block LDL^T on the particles' 3x3 blocks (BlockLDU), ordering analysed once per scene: symmetric J
+  ldu,   ///< block LDU, the same factorization for the exact, non-symmetric Jacobian of a damped cloth
+  cg,    ///< conjugate gradients with a block-Jacobi (3x3) preconditioner, warm-started; needs the definite matrix
+  lu,    ///< Eigen's sparse LU with partial pivoting: any matrix, slower; the reference the block solvers are
+         ///< tested against
+  automatic  ///< chosen for the matrix: ldu for the exact Jacobian of a damped cloth, ldlt otherwise
+};
+/// The solvers by name: ldlt, ldu, cg, lu, automatic.
+const NameTable<LinearSolverKind>& linear_solvers();
+const char* linear_solver_name(LinearSolverKind kind);
+
+/// Which Newton iteration solves the stage equation.
+enum class NewtonVariant {
+  full,      ///< a fresh matrix at every iterate: quadratic convergence
+  modified,  ///< one factorization kept across iterations, stages and steps while it still converges fast
+  one        ///< Baraff & Witkin's linearly implicit step: one iteration from the guess, accepted as it is
+};
+/// The variants by name: full, modified, one.
+const NameTable<NewtonVariant>& newton_variants();
+const char* newton_variant_name(NewtonVariant variant);
+
+/// Newton's stopping rule and its linear algebra.
+struct NewtonSettings {
+  /// Converged when both |dv|_inf <= tol (1 + |V|_inf) and |r|_inf <= tol m (1 + |V|_inf), where
+  /// r = M (V - v~) - gamma f(x~ + gamma V, V) is the residual after the update.
+  double tolerance = 1e-8;
+  /// Iterations before the stage is declared failed. 1 is Baraff & Witkin's linearly implicit step: one
+  /// iteration from the guess, accepted as it is, by design (the same as NewtonVariant::one).
+  int max_iterations = 20;
+  LinearSolverKind solver = LinearSolverKind::automatic;
+  /// exact (the default) makes Newton converge quadratically, damped or not; symmetric suits ldlt and lu;
+  /// cg needs definite.
+  StiffnessTreatment treatment = StiffnessTreatment::exact;
+  double cg_tolerance = 1e-10;  ///< relative residual of each CG solve
+  int cg_max_iterations = 2000;
+  NewtonVariant variant = NewtonVariant::full;
+
+  /// Whether the iteration is the one-iteration step (variant one, or a limit of one iteration).
+  [[nodiscard]] bool one_iteration() const { return variant == NewtonVariant::one || max_iterations == 1; }
+};
+
+/// The settings with `automatic` replaced by the solver the matrix calls for: the exact Jacobian of a damped
+/// cloth is not symmetric, so it gets ldu; every other treatment gives a symmetric matrix, which gets ldlt.
+NewtonSettings resolve(NewtonSettings settings, const Scene& scene);
+
+/// Throws InputError when a setting is out of range or the solver cannot take the matrix the treatment gives (CG
+/// needs the definite one, LDL^T a symmetric one). The message names the settings as the tables above name them;
+/// a program maps them to its flags.
+void validate(const NewtonSettings& settings, const Scene& scene);
+
+/// Solves the stage equation r(V) = M (V - v~) - gamma f(x~ + gamma V, V) = 0 by Newton's method on the Newton
+/// matrix J = M - gamma df/dv - gamma^2 df/dx, assembled in the pattern the ForceField analysed once. The work
+/// is counted in the owning stepper's StepCounters.
+class StageNewton {
+ public:
+  StageNewton(ForceField& field, NewtonSettings settings, StepCounters& counters);
+
+  /// Starts a new time step (modified Newton refreshes its matrix after a number of steps).
+  void begin_step() { ++steps_since_refresh_; }
+
+  /// Solves the stage from the guess in V. On success V is the stage velocity, position() = x~ + gamma V and,
+  /// when `need_force`, force() = f(position(), V). On failure returns false with failure() set; V is then
+  /// meaningless.
+  bool solve(const Vector& x_tilde, const Vector& v_tilde, double gamma, Vector& V, bool need_force);
+
+  [[nodiscard]] const Vector& position() const { return x1_; }
+  [[nodiscard]] const Vector& force() const { return f_; }
+  [[nodiscard]] const StepFailure& failure() const { return failure_; }
+  [[nodiscard]] const NewtonSettings& settings() const { return settings_; }
+  /// |r|_inf at the start of each Newton iteration of the last solve, and after its last update.
+  [[nodiscard]] const std::vector<double>& residual_history() const { return residuals_; }
+
+  /// Seconds spent in assembly, factorization and solve since the last reset (for Chapter 6's breakdown).
+  struct Timing {
+    double assembly = 0, factorization = 0, solve = 0;
+  };
+  [[nodiscard]] const Timing& timing() const { return timing_; }
+  void reset_timing() { timing_ = {}; }
+
+ private:
+  // Assembles J at (x1_, V) for gamma and factorizes it (or builds CG's preconditioner); false on failure.
+  bool refresh(const Vector& V, double gamma);
+  // dv = J^{-1} rhs with the matrix last refreshed.
+  bool linear_solve(const Vector& rhs, Vector& dv, bool warm_start);
+  // Sets x1_ = x~ + gamma V, f_ and r_ = -r(V), and returns |r|_inf.
+  double residual_at(const Vector& x_tilde, const Vector& v_tilde, double gamma, const Vector& V);
+  void fail_linear(int iteration, double residual);
+
+  /// The block factorizations' updates are accepted up to this normwise backward error, a thousandth of
+  /// Newton's default tolerance: an inexact update then never decides whether Newton converges.
+  static constexpr double max_backward_error = 1e-11;
+
+  ForceField& field_;
+  NewtonSettings settings_;
+  StepCounters& counters_;
+  StepFailure failure_;
+  StepFailureKind linear_failure_kind_ = StepFailureKind::none;
+  std::string linear_failure_;  // why the last linear solve failed, for the failure reason
+  SparseMatrix A_;
+  BlockLDU block_;
+  BlockJacobiPCG cg_;
+  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu_;
+  Vector x1_, f_, r_, dv_, warm_dv_;
+  std::vector<double> residuals_;
+  Timing timing_;
+  // Modified Newton: whether A_ holds a usable factorization, for which gamma, and how many steps ago.
+  bool factored_ = false;
+  double factored_gamma_ = 0;
+  int steps_since_refresh_ = 0;
+};
+
+}  // namespace cloth

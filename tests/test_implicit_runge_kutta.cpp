@@ -1,0 +1,274 @@
+// Chapter 9's implicit methods: the recorded states of Chapter 4's implicit Euler reproduced by the backward_euler
+// tableau, observed orders against the closed form, implicit midpoint's exact energy on a linear oscillator,
+// modified against full Newton, BDF2, and the tableaus the engine refuses.
+#include "analysis/stability_function.hpp"
+#include "base/input_error.hpp"
+#include "integrators/bdf2.hpp"
+#include "integrators/diagonally_implicit_runge_kutta.hpp"
+#include "integrators/method_registry.hpp"
+#include "integrators/simulate.hpp"
+#include "model/single_spring.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+using namespace cloth;
+
+namespace {
+
+ImplicitTableau tableau(const std::string& name) { return implicit_tableau_from_argument(name); }
+
+// The largest difference between a run's final free state and a final.dat recorded from Chapter 4.
+double difference_from_recorded(const Scene& scene, const Vector& x, const Vector& v, const std::string& file) {
+  std::ifstream in(std::string(CLOTH_SOURCE_DIR) + "/tests/data/ch04_implicit_euler/" + file);
+  REQUIRE(in.good());
+  std::string line;
+  double worst = 0;
+  int compared = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream words(line);
+    int i = 0, j = 0;
+    Eigen::Matrix<double, 6, 1> recorded;
+    words >> i >> j >> recorded[0] >> recorded[1] >> recorded[2] >> recorded[3] >> recorded[4] >> recorded[5];
+    REQUIRE(words);
+    const int s = scene.slot(scene.grid().particle(i, j));
+    if (s >= scene.free_count()) continue;
+    for (int k = 0; k < 3; ++k) {
+      worst = std::max(worst, std::abs(x[3 * s + k] - recorded[k]));
+      worst = std::max(worst, std::abs(v[3 * s + k] - recorded[3 + k]));
+    }
+    ++compared;
+  }
+  CHECK(compared == scene.free_count());
+  return worst;
+}
+
+// Error at t = 1 s on the damped single spring (K = 50, D = 2) against the closed form, positions and velocities
+// divided by omega; Newton's tolerance far below the truncation error.
+template <class MakeStepper>
+double oscillator_error(MakeStepper make, double h) {
+  const double K = 50, D = 2, m = 1, T = 1, s0 = -0.005;
+  const Scene scene(single_spring_params(K, D));
+  ForceField field(scene);
+  auto stepper = make(field);
+  Vector x, v;
+  single_spring_initial_state(scene, s0, x, v);
+  const Vector rest = scene.initial_positions();
+  const auto steps = std::llround(T / h);
+  for (long long n = 0; n < steps; ++n) REQUIRE(stepper->step(h, x, v));
+  const OscillatorState exact = single_spring_exact(K, D, m, s0, T);
+  double error = 0;
+  for (Eigen::Index i = 1; i < x.size(); i += 3)
+    error = std::max({error, std::abs(x[i] - rest[i] - exact.s), std::abs(v[i] - exact.ds) / std::sqrt(K / m)});
+  return error;
+}
+
+NewtonSettings tight() {
+  NewtonSettings s;
+  s.tolerance = 1e-13;
+  s.solver = LinearSolverKind::lu;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("backward_euler on the stage machinery reproduces Chapter 4's recorded implicit Euler to 1e-12") {
+  struct Case {
+    const char* file;
+    double K, D;
+    LinearSolverKind solver;
+    StiffnessTreatment treatment;
+    int max_iterations;
+  };
+  const Case cases[] = {
+      {"K200_D20_full_ldu.dat", 200, 20, LinearSolverKind::ldu, StiffnessTreatment::exact, 20},
+      {"K200_D20_full_cg.dat", 200, 20, LinearSolverKind::cg, StiffnessTreatment::definite, 20},
+      {"K200_D20_one_ldu.dat", 200, 20, LinearSolverKind::automatic, StiffnessTreatment::exact, 1},
+      {"K50_D0_full_ldlt.dat", 50, 0, LinearSolverKind::automatic, StiffnessTreatment::exact, 20},
+      {"K50_D0_one_ldlt.dat", 50, 0, LinearSolverKind::automatic, StiffnessTreatment::exact, 1},
+  };
+  for (const Case& c : cases) {
+    SceneParams p;
+    p.stiffness = c.K;
+    p.damping = c.D;
+    const Scene scene(p);
+    ForceField field(scene);
+    NewtonSettings s;
+    s.solver = c.solver;
+    s.treatment = c.treatment;
+    s.max_iterations = c.max_iterations;
+    DiagonallyImplicitRungeKutta stepper(field, tableau("backward_euler"), s);
+    RunSettings run;
+    run.dt = 0.01;
+    run.t_end = 0.3;
+    const RunResult result = simulate(stepper, run, false);
+    REQUIRE(result.status == RunStatus::ok);
+    INFO(c.file);
+    CHECK(difference_from_recorded(scene, result.x, result.v, c.file) <= 1e-12);
+  }
+}
+
+TEST_CASE("observed orders on the damped oscillator: 1, 2, 2, 2, 3 for the tableaus, 2 for TR-BDF2 and BDF2") {
+  const std::pair<const char*, int> expected[] = {{"backward_euler", 1}, {"implicit_midpoint", 2}, {"trapezoid", 2},
+                                                  {"sdirk2", 2},         {"sdirk3", 3},            {"trbdf2", 2}};
+  for (const auto& [name, order] : expected) {
+    const ImplicitTableau t = tableau(name);
+    const auto make = [&](ForceField& field) { return std::make_unique<DiagonallyImplicitRungeKutta>(field, t, tight()); };
+    // h from 1/80 to 1/320 (h omega from 0.09 to 0.02): the asymptotic range, errors well above rounding.
+    const double e1 = oscillator_error(make, 1.0 / 80), e2 = oscillator_error(make, 1.0 / 160),
+                 e3 = oscillator_error(make, 1.0 / 320);
+    INFO(std::string(name) << ": errors " << e1 << ", " << e2 << ", " << e3);
+    // Backward Euler approaches its order from below (0.89, then 0.95); the others are within 0.01.
+    CHECK(std::abs(std::log2(e1 / e2) - order) <= 0.15);
+    CHECK(std::abs(std::log2(e2 / e3) - order) <= 0.08);
+  }
+  const auto bdf2 = [](ForceField& field) { return std::make_unique<Bdf2>(field, tight()); };
+  const double e1 = oscillator_error(bdf2, 1.0 / 80), e2 = oscillator_error(bdf2, 1.0 / 160),
+               e3 = oscillator_error(bdf2, 1.0 / 320);
+  INFO("bdf2: errors " << e1 << ", " << e2 << ", " << e3);
+  CHECK(std::abs(std::log2(e1 / e2) - 2) <= 0.15);
+  CHECK(std::abs(std::log2(e2 / e3) - 2) <= 0.08);
+}
+
+TEST_CASE("implicit midpoint keeps the energy of the undamped linear oscillator to rounding; backward Euler drains it") {
+  const double K = 50, s0 = -0.005;
+  const Scene scene(single_spring_params(K, 0));
+  ForceField field(scene);
+  Vector x0, v0;
+  single_spring_initial_state(scene, s0, x0, v0);
+  const double E0 = field.energy(x0, v0).total();
+  REQUIRE(E0 > 0);
+  const auto energy_after = [&](const char* name, int steps) {
+    DiagonallyImplicitRungeKutta stepper(field, tableau(name), tight());
+    Vector x = x0, v = v0;
+    double worst = 0;
+    for (int n = 0; n < steps; ++n) {
+      REQUIRE(stepper.step(0.01, x, v));
+      worst = std::max(worst, std::abs(field.energy(x, v).total() - E0));
+    }
+    return std::pair{field.energy(x, v).total(), worst};
+  };
+  // 5000 steps of h = 0.01 (h omega = 0.07, 56 periods). The midpoint rule conserves every quadratic invariant
+  // of a linear system exactly (Cooper 1987), so what remains is rounding and Newton's 1e-13 tolerance.
+  const auto [E_midpoint, drift_midpoint] = energy_after("implicit_midpoint", 5000);
+  INFO("E0 = " << E0 << ", midpoint's largest deviation " << drift_midpoint);
+  CHECK(drift_midpoint <= 1e-12 * E0);
+  // Backward Euler multiplies each mode's amplitude by |R(i h omega)| = 1 / sqrt(1 + (h omega)^2) per step.
+  const auto [E_euler, drift_euler] = energy_after("backward_euler", 5000);
+  const double h_omega = 0.01 * std::sqrt(K);
+  CHECK(E_euler / E0 == doctest::Approx(std::pow(1 + h_omega * h_omega, -5000)).epsilon(0.02));
+}
+
+TEST_CASE("modified Newton converges to full Newton's solution with fewer factorizations") {
+  SceneParams p;
+  p.stiffness = 200;
+  p.damping = 20;
+  const Scene scene(p);
+  ForceField field(scene);
+  NewtonSettings full;
+  full.tolerance = 1e-11;
+  NewtonSettings modified = full;
+  modified.variant = NewtonVariant::modified;
+  RunSettings run;
+  run.dt = 0.01;
+  run.t_end = 0.3;
+  for (const char* name : {"sdirk2", "trbdf2", "backward_euler"}) {
+    DiagonallyImplicitRungeKutta a(field, tableau(name), full), b(field, tableau(name), modified);
+    const RunResult ra = simulate(a, run, false), rb = simulate(b, run, false);
+    REQUIRE(ra.status == RunStatus::ok);
+    REQUIRE(rb.status == RunStatus::ok);
+    INFO(std::string(name) << ": factorizations full " << ra.counters.factorizations << ", modified " << rb.counters.factorizations);
+    // Both stop at the same residual test: their states differ by the tolerance's worth, not by the method.
+    CHECK((ra.x - rb.x).lpNorm<Eigen::Infinity>() <= 1e-8);
+    CHECK((ra.v - rb.v).lpNorm<Eigen::Infinity>() <= 1e-7);
+    CHECK(rb.counters.factorizations * 3 <= ra.counters.factorizations);
+  }
+}
+
+TEST_CASE("the built-in tableaus satisfy their order conditions, TR-BDF2's embedded weights theirs") {
+  for (const ImplicitTableau& t : builtin_implicit_tableaus()) {
+    INFO(t.method.name);
+    CHECK_NOTHROW(validate(t));
+    CHECK(order_condition_defect(t.method, t.method.order) <= 1e-14);
+    // and not the next order: each claims exactly its order
+    if (t.method.order < 4) CHECK(order_condition_defect(t.method, t.method.order + 1) > 1e-3);
+  }
+  const ImplicitTableau trbdf2 = tableau("trbdf2");
+  ButcherTableau embedded = trbdf2.method;
+  embedded.b = trbdf2.b_hat;
+  CHECK(order_condition_defect(embedded, 3) <= 1e-14);
+  CHECK(trbdf2.stiffly_accurate());
+  CHECK(trbdf2.explicit_first_stage());
+  CHECK_FALSE(tableau("implicit_midpoint").stiffly_accurate());
+}
+
+TEST_CASE("a fully implicit tableau (two-stage Gauss) is refused with a message that says so") {
+  ImplicitTableau gauss;
+  const double r = std::sqrt(3.0) / 6;
+  gauss.method.name = "gauss2";
+  gauss.method.order = 4;
+  gauss.method.A.resize(2, 2);
+  gauss.method.A << 0.25, 0.25 - r, 0.25 + r, 0.25;
+  gauss.method.b = Eigen::Vector2d(0.5, 0.5);
+  gauss.method.c = gauss.method.A.rowwise().sum();
+  try {
+    validate(gauss);
+    FAIL("the Gauss tableau was accepted");
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    CHECK(what.find("a_12") != std::string::npos);
+    CHECK(what.find("fully implicit") != std::string::npos);
+  }
+  ImplicitTableau wrong = tableau("sdirk2");
+  wrong.method.order = 3;
+  CHECK_THROWS_AS(validate(wrong), InputError);
+}
+
+TEST_CASE("R(z) of the implicit tableaus matches the closed forms; R(infinity) and A-stability from the tableau") {
+  const double g = 1 - std::sqrt(2.0) / 2;
+  const Complex points[] = {{-0.5, 0}, {-3, 2}, {0.2, -1.5}, {-40, 7}, {0, 5}};
+  for (const Complex z : points) {
+    INFO("z = " << z.real() << " + " << z.imag() << " i");
+    CHECK(std::abs(stability_function(tableau("backward_euler").method, z) - 1.0 / (1.0 - z)) <= 1e-14);
+    const Complex pade11 = (1.0 + z / 2.0) / (1.0 - z / 2.0);
+    CHECK(std::abs(stability_function(tableau("implicit_midpoint").method, z) - pade11) <= 1e-13);
+    CHECK(std::abs(stability_function(tableau("trapezoid").method, z) - pade11) <= 1e-13);
+    // Two-stage SDIRK, stiffly accurate: R = (1 + (1 - 2 gamma) z) / (1 - gamma z)^2.
+    const Complex sdirk2 = (1.0 + (1 - 2 * g) * z) / ((1.0 - g * z) * (1.0 - g * z));
+    CHECK(std::abs(stability_function(tableau("sdirk2").method, z) - sdirk2) <= 1e-13);
+  }
+  // Order p means R(z) = e^z + O(z^(p+1)): at z = 1e-2 the difference is about z^(p+1) / (p+1)! or smaller.
+  for (const ImplicitTableau& t : builtin_implicit_tableaus()) {
+    const int p = t.method.order;
+    const double small = 1e-2;
+    const double defect = std::abs(stability_function(t.method, small) - std::exp(small));
+    INFO(t.method.name);
+    CHECK(defect <= std::pow(small, p + 1));
+    CHECK(defect >= 1e-3 * std::pow(small, p + 2));
+    CHECK(a_stable(t.method));
+  }
+  // Extrapolated from |z| = 1e4 to 4e4: accurate to about 1e-11.
+  CHECK(std::abs(stability_at_infinity(tableau("implicit_midpoint").method) + 1) <= 1e-10);
+  CHECK(std::abs(stability_at_infinity(tableau("trapezoid").method) + 1) <= 1e-10);
+  for (const char* name : {"backward_euler", "sdirk2", "sdirk3", "trbdf2"}) {
+    INFO(std::string(name));
+    CHECK(std::abs(stability_at_infinity(tableau(name).method)) <= 1e-10);
+  }
+  // An explicit method is not A-stable, and R grows without bound.
+  for (const Method* m : methods_of(MethodFamily::explicit_runge_kutta)) {
+    REQUIRE(m->tableau);
+    CHECK_FALSE(a_stable(*m->tableau));
+    CHECK(std::isinf(stability_at_infinity(*m->tableau)));
+  }
+  // A DIRK with a diagonal below 1/4 on two stages: gamma = 0.2 loses A-stability (the SDIRK2 family is A-stable
+  // for gamma >= 1/4).
+  ImplicitTableau weak = tableau("sdirk2");
+  weak.method.A << 0.2, 0, 0.8, 0.2;
+  weak.method.b = Eigen::Vector2d(0.8, 0.2);
+  CHECK_FALSE(a_stable(weak.method));
+}
