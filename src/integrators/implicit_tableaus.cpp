@@ -1,23 +1,19 @@
 // The diagonally implicit tableaus: built-ins from their sources, validation, and files.
 #include "integrators/implicit_tableaus.hpp"
 
+#include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "base/text.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <sys/stat.h>
 
 namespace cloth {
 
 namespace {
 
-std::string fmt(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
+// Every digit of a coefficient, in the book's one number formatter.
+std::string fmt(double x) { return format_number(x, 17); }
 
 // Tableaus built from square roots and a cubic's root satisfy their conditions to a few ulps.
 constexpr double tolerance = 1e-12;
