@@ -624,6 +624,22 @@ TEST_CASE("memory limits: under ulimit -v a run that would not fit is refused na
     defined(CLOTH_HAVE_CH07_STABILITY) && defined(CLOTH_HAVE_CH09_IMPLICIT_RUNGE_KUTTA) && \
     defined(CLOTH_HAVE_CH10_REAL_CLOTH)
 
+TEST_CASE("ch07 on a cloth with no sagged equilibrium ends with status 3 and one line, its regions kept") {
+  // Shear springs alone, hung from one corner: a mechanism that keeps falling, so nothing is predicted about it.
+  const ProgramFolder folder;
+  const ProgramRun run =
+      folder.run("ch07_stability", {"--springs", "shear", "--pins", "corner", "--grid", "6x6", "--out", "out"});
+  CAPTURE(run.err);
+  CHECK(run.status == 3);
+  CHECK(run.err.rfind("ch07_stability: the sagged equilibrium for K = 50 did not converge (|f| = ", 0) == 0);
+  CHECK(contains(run.err, " N after 300 iterations): the sagged spectra and h_max are predicted about it\n"));
+  CHECK(count_of(run.err, "\n") == 1);
+  const fs::path out = folder.cwd() / "out";
+  CHECK(fs::exists(out / "regions.dat"));
+  CHECK(!fs::exists(out / "predicted.dat"));
+  CHECK(partial_files(out).empty());
+}
+
 TEST_CASE("SIGINT and SIGTERM during ch05-ch10: each program stops between two steps, one line, no partial file") {
   struct SignalCase {
     std::string program;

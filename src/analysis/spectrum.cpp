@@ -10,6 +10,7 @@
 #include <Spectra/SymEigsSolver.h>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace cloth {
@@ -107,8 +108,14 @@ PowerIterationResult largest_eigenvalue_magnitude(ForceField& field, const Vecto
 
 Equilibrium static_equilibrium(ForceField& field, double tolerance, int max_iterations) {
   const Scene& scene = field.scene();
-  const double m = scene.params().mass;
-  const double limit = tolerance * m * std::max(scene.params().gravity, 1.0);
+  const SceneParams& p = scene.params();
+  const double m = p.mass;
+  // Converged when the net force on every particle is a small fraction of its weight, or down to the rounding of
+  // the spring forces that cancel in it: a light cloth's weight can lie below that (1 mg against springs of 20 N),
+  // where no iteration can reduce |f| further.
+  const double spring_force = std::max(p.stiffness, p.flexion_stiffness.value_or(0.0)) * 2 * p.grid.d;
+  const double limit = std::max(tolerance * m * std::max(p.gravity, 1.0),
+                                64 * std::numeric_limits<double>::epsilon() * spring_force);
   const Vector zero = Vector::Zero(field.dof_count());
   Equilibrium eq;
   eq.x = scene.initial_positions();
