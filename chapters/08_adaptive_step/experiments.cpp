@@ -2,7 +2,7 @@
 #include "experiments.hpp"
 
 #include "integrators/adaptive_simulate.hpp"
-#include "integrators/embedded_tableaus.hpp"
+#include "integrators/method_registry.hpp"
 #include "program/interrupt.hpp"
 #include "program/output.hpp"
 
@@ -65,9 +65,10 @@ void pair_summary(const Options& opt, const std::vector<double>& tolerances) {
   run.t_end = 1.0;
   OutputFile out(opt.run.out_dir + "/pairs.dat");
   std::fprintf(out.get(), "# pair controller tol accepted rejected evaluations smallest_h largest_h status\n");
-  for (const ButcherTableau& t : embedded_tableaus())
+  for (const Method* row : methods_of(MethodFamily::embedded_runge_kutta))
     for (const double tol : tolerances)
       for (const ControllerKind controller : {ControllerKind::pi, ControllerKind::elementary}) {
+        const ButcherTableau& t = *row->tableau;
         EmbeddedRungeKutta rk(field, t);
         const AdaptiveResult r = adaptive_simulate(rk, run, with_tolerance(tol, controller), false);
         std::fprintf(out.get(), "%s %s %g %lld %lld %lld %.3e %.3e %s\n", t.name.c_str(), controller_name(controller),
@@ -85,11 +86,12 @@ void pair_summary(const Options& opt, const std::vector<double>& tolerances) {
 void jump_response(const Options& opt) {
   OutputFile out(opt.run.out_dir + "/jump_response.dat");
   std::fprintf(out.get(), "# theta, then per pair: true_error estimate  (per unit J h; pairs in the order of "
-                          "embedded_tableaus())\n");
+                          "the method registry)\n");
   for (int k = 0; k <= 1000; ++k) {
     const double theta = (k + 0.5) / 1001.0;
     std::fprintf(out.get(), "%.6f", theta);
-    for (const ButcherTableau& t : embedded_tableaus()) {
+    for (const Method* row : methods_of(MethodFamily::embedded_runge_kutta)) {
+      const ButcherTableau& t = *row->tableau;
       double seen_b = 0, seen_d = 0;
       for (int i = 0; i < t.stages(); ++i)
         if (t.c[i] > theta) seen_b += t.b[i], seen_d += t.b[i] - t.b_hat[i];
@@ -118,7 +120,8 @@ void estimate_check(const Options& opt, double tol, int substeps) {
   std::fprintf(out.get(), "# pair t h estimate true_error shortest_l_over_L0  (rtol = atol = %g; blocks by pair)\n", tol);
   std::fprintf(summary.get(), "# pair accepted blind_steps(true > 10, estimate <= 1) worst_true worst_ratio_true_over_estimate\n");
   EmbeddedRungeKutta reference(reference_field, embedded_tableau_from_argument("dopri5"));
-  for (const ButcherTableau& t : embedded_tableaus()) {
+  for (const Method* row : methods_of(MethodFamily::embedded_runge_kutta)) {
+    const ButcherTableau& t = *row->tableau;
     EmbeddedRungeKutta rk(field, t);
     Vector xr(scene.dof_count()), vr(scene.dof_count());
     long long accepted = 0, blind = 0;

@@ -7,7 +7,7 @@
 #include "base/input_error.hpp"
 #include "base/text.hpp"
 #include "integrators/adaptive_simulate.hpp"
-#include "integrators/embedded_tableaus.hpp"
+#include "integrators/method_registry.hpp"
 #include "program/command_line.hpp"
 #include "program/output.hpp"
 #include "program/run_outputs.hpp"

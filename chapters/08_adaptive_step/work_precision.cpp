@@ -7,7 +7,7 @@
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "integrators/adaptive_simulate.hpp"
-#include "integrators/embedded_tableaus.hpp"
+#include "integrators/method_registry.hpp"
 #include "program/command_line.hpp"
 #include "program/output.hpp"
 
@@ -142,7 +142,8 @@ int main(int argc, char** argv) {
       rows.push_back({series, tableau.name, tol, position_error(result.x, ref), t.wall, t.cpu,
                       result.counters.rhs_evaluations});
     };
-    for (const ButcherTableau& tableau : embedded_tableaus()) {
+    for (const Method* row : methods_of(MethodFamily::embedded_runge_kutta)) {
+      const ButcherTableau& tableau = *row->tableau;
       if (tableau.name == "heun_euler") continue;  // order 2: far off the diagram at these errors
       for (const NormKind norm : {NormKind::rms, NormKind::max})
       for (const double tol : tolerances) {
