@@ -40,7 +40,6 @@ AdaptiveSettings with_tolerance(double tol, ControllerKind controller) {
   return s;
 }
 
-// [hard_case]
 // Every attempt of dopri5 on the report's cloth, with the shortest spring at the state it starts from: where the
 // controller shrinks h and where it rejects. Both controllers; pairs.dat sums up every pair with both.
 void hard_case(const Options& opt, double tol, const std::string& command) {
@@ -55,6 +54,7 @@ void hard_case(const Options& opt, double tol, const std::string& command) {
   MarkdownTable table({"controller", "accepted", "rejected", "rejected with a spring below L0/10", "evaluations",
                        "smallest step [s]", "largest step [s]", "first step below 1e-3 s at t [s]"},
                       "lrrrrrrr");
+  // [hard_case]
   for (const ControllerKind controller : {ControllerKind::pi, ControllerKind::elementary}) {
     EmbeddedRungeKutta rk(field, embedded_tableau_from_argument("dopri5"));
     long long rejected_near_zero = 0;
@@ -67,6 +67,7 @@ void hard_case(const Options& opt, double tol, const std::string& command) {
           std::fprintf(out.get(), "%s %.10f %.6e %.6e %d %.6e\n", controller_name(controller), a.t, a.h, a.error,
                        a.accepted ? 1 : 0, shortest);
         });
+    // [hard_case]
     std::fprintf(out.get(), "\n\n");
     table.add_row({controller_name(controller), std::to_string(r.accepted), std::to_string(r.rejected),
                    std::to_string(rejected_near_zero), std::to_string(r.counters.rhs_evaluations),
@@ -107,7 +108,6 @@ void pair_summary(const Options& opt, const std::vector<double>& tolerances, con
   out.commit();
   write_table_fragment(opt.run.out_dir + "/controllers.md", table, command);
 }
-// [hard_case]
 
 // [jump_response]
 // A jump J in the acceleration at t0 + theta h, inside a step: stage i sees it when c_i > theta, so the step
@@ -140,6 +140,7 @@ void jump_response(const Options& opt, const std::string& command) {
     std::fprintf(out.get(), "\n");
   }
   out.commit();
+  // [jump_response]
   MarkdownTable table({"pair", "largest true error [J h]", "largest estimate [J h]",
                        "largest estimate of a jump before 0.8 h [J h]"},
                       "lrrr");
@@ -148,9 +149,7 @@ void jump_response(const Options& opt, const std::string& command) {
                    format_number(worst[p].early_estimate, 2)});
   write_table_fragment(opt.run.out_dir + "/jump_response.md", table, command);
 }
-// [jump_response]
 
-// [estimate_check]
 // Each pair's estimate against the true local error of its accepted steps on the cloth: every accepted step is
 // taken again from the same state with `substeps` steps of dopri5's fifth-order row, and the difference from the
 // pair's candidate is measured in the same norm. Steps whose true error exceeds 10 tolerances while the estimate
@@ -166,10 +165,11 @@ void estimate_check(const Options& opt, double tol, int substeps, const std::str
   OutputFile summary(opt.run.out_dir + "/estimate_summary.dat");
   std::fprintf(out.get(), "# pair t h estimate true_error shortest_l_over_L0  (rtol = atol = %g; blocks by pair)\n", tol);
   std::fprintf(summary.get(), "# pair accepted blind_steps(true > 10, estimate <= 1) worst_true worst_ratio_true_over_estimate\n");
-  EmbeddedRungeKutta reference(reference_field, embedded_tableau_from_argument("dopri5"));
   MarkdownTable table({"pair", "accepted steps", "true error > 10 tolerances", "of them with a spring below L0/5",
                        "largest true error [tolerances]", "largest true / estimated"},
                       "lrrrrr");
+  // [estimate_check]
+  EmbeddedRungeKutta reference(reference_field, embedded_tableau_from_argument("dopri5"));
   for (const Method* row : methods_of(MethodFamily::embedded_runge_kutta)) {
     const ButcherTableau& t = *row->tableau;
     EmbeddedRungeKutta rk(field, t);
@@ -191,6 +191,7 @@ void estimate_check(const Options& opt, double tol, int substeps, const std::str
                         std::fprintf(out.get(), "%s %.10f %.6e %.6e %.6e %.6e\n", t.name.c_str(), a.t, a.h, a.error,
                                      truth, shortest);
                       });
+    // [estimate_check]
     table.add_row({"`" + t.name + "`", std::to_string(accepted), std::to_string(blind), std::to_string(blind_near_zero),
                    format_number(worst, 2), format_number(worst_ratio, 2)});
     std::fprintf(out.get(), "\n\n");
@@ -204,13 +205,12 @@ void estimate_check(const Options& opt, double tol, int substeps, const std::str
   write_table_fragment(opt.run.out_dir + "/estimate_check.md", table, command);
 }
 
-// [pairs_table]
 // The registry's pairs as the page lists them, with the residuals of their order conditions: the largest over
 // every condition of a row's own order and below (rounding), and the smallest largest-residual of the next order
 // (the conditions the row does not satisfy).
 void pairs_table(const std::string& dir, const std::string& command) {
-  MarkdownTable table({"name", "pair", "stages", "orders (b, b-hat)", "first same as last", "evaluations per step",
-                       "largest residual to its orders", "residual of the next order (b, b-hat)"},
+  MarkdownTable table({"name", "pair", "stages", "orders (b, b-hat)", "FSAL", "evaluations per step",
+                       "residual to its orders", "residual of the next order (b, b-hat)"},
                       "llrrlrrr");
   for (const Method* m : methods_of(MethodFamily::embedded_runge_kutta)) {
     const ButcherTableau& t = *m->tableau;
@@ -227,7 +227,6 @@ void pairs_table(const std::string& dir, const std::string& command) {
   }
   write_table_fragment(dir + "/pairs.md", table, command);
 }
-// [pairs_table]
 
 // The generated conditions up to order 4 exactly as the error messages state them, and the count of trees by order.
 void conditions_table(const std::string& dir, const std::string& command) {
@@ -244,7 +243,6 @@ void conditions_table(const std::string& dir, const std::string& command) {
   counts.add_row(row);
   write_table_fragment(dir + "/tree_counts.md", counts, command);
 }
-// [estimate_check]
 
 }  // namespace
 

@@ -262,10 +262,9 @@ int main(int argc, char** argv) {
     }
     write_table_fragment(dir + "evaluation_cost.md", cost, command);
 
-    // [levels]
     // At each error level: the cheapest run of each series that reaches it (thread CPU time, best of the timed
     // runs: on a shared machine the wall clock also counts the time the thread waited for a core), and the
-    // ratios of the speed target.
+    // ratios of the project's time to odeint's.
     OutputFile levels(dir + "levels.dat");
     std::fprintf(levels.get(), "# (thread CPU seconds) level_m project_best project_seconds odeint_dopri5_plain_s odeint_cash_karp54_plain_s "
                                "odeint_dopri5_project_forces_s odeint_cash_karp54_project_forces_s "
@@ -280,6 +279,8 @@ int main(int argc, char** argv) {
     for (int k = 3; k <= 8; ++k) {
       const double level = std::pow(10.0, -k);
       if (level < floor) continue;  // not measurable against this reference
+      // [levels]
+      // The least CPU time of a run of `series` (and `method`, unless empty) whose error at T is within `level`.
       const auto cheapest = [&](const std::string& series, const std::string& method, std::string* which) {
         double best = 1e300;
         for (const Row& r : rows)
@@ -294,6 +295,7 @@ int main(int argc, char** argv) {
           }
         return best < 1e300 ? best : std::nan("");  // nan: no run of the series reached the level
       };
+      // [levels]
       std::string which = "-";  // for the page; levels.dat gets it without spaces
       const double mine = cheapest("project", "", &which);
       const double dp = cheapest("odeint_plain", "dopri5", nullptr), ck = cheapest("odeint_plain", "cash_karp54", nullptr);
@@ -313,7 +315,6 @@ int main(int argc, char** argv) {
     }
     levels.commit();
     write_table_fragment(dir + "levels.md", level_table, command);
-    // [levels]
     return 0;
   });
 }
