@@ -72,7 +72,7 @@ do for [f = 1:nfigures] {
   r = fig_run[f]
   eval set_xy_tics(r)
   set output sprintf("%s/ch05_figure%d.png", plots, fig_number[f])
-  set multiplot layout 2,2 title sprintf("%s\n{/*0.85 %s, h = %g s: structural springs coloured by strain (%s)\nx and y drawn to scale; z to its own scale, read it from its tics [m]}", \
+  set multiplot layout 2,2 title sprintf("%s\n{/*0.85 %s, h = %g s: structural springs coloured by strain (%s)}\n{/*0.85 x and y drawn to scale, z to its own: read depths from its tics [m]}", \
       fig_caption[f], run_method[r], h, run_status[r]) font ",14"
   do for [i = 1:ninstants] {
     k = (r - 1) * ninstants + i
