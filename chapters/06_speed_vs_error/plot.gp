@@ -104,12 +104,15 @@ set title 'Cost per step against grid size, K = 50, D = 0 (explicit h = 1e-3, im
 # No fitted exponents: the quick run measures too few sizes to fit one (the page quotes the full run's, fitted
 # over five sizes). Grey guide lines of slope 1 and 3/2 through each method's smallest grid show how linear
 # and n^{3/2} growth would look.
-stats data.'/scaling.dat' index 0 using 3:10 nooutput
-x0 = STATS_min_x; y_explicit = STATS_min_y
-stats data.'/scaling.dat' index 2 using 3:10 nooutput
-y_direct = STATS_min_y
-stats data.'/scaling.dat' index 3 using 3:10 nooutput
-y_cg = STATS_min_y
+# (One column at a time: two-column stats fits a line, and warns when it has only two points.)
+stats data.'/scaling.dat' index 0 using 3 nooutput
+x0 = STATS_min
+stats data.'/scaling.dat' index 0 using 10 nooutput
+y_explicit = STATS_min
+stats data.'/scaling.dat' index 2 using 10 nooutput
+y_direct = STATS_min
+stats data.'/scaling.dat' index 3 using 10 nooutput
+y_cg = STATS_min
 plot data.'/scaling.dat' index 0 using 3:10 with linespoints ls 1 lw 1.5 title 'explicit Euler', \
      '' index 1 using 3:10 with linespoints ls 4 lw 1.5 title 'RK4', \
      '' index 2 using 3:10 with linespoints ls 6 lw 1.5 title 'implicit Euler, direct (block LDL^T)', \
