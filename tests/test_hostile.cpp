@@ -159,7 +159,8 @@ std::vector<ProgramOutputs> every_output() {
       {"ch02_explicit_euler", {"--single-spring"}, {"single_spring.dat"}},
       {"ch02_explicit_euler",
        {"--report-runs"},
-       joined({"single_spring.dat"}, in_folders(joined(prefixed("explicit_euler_"), prefixed("symplectic_euler_")), run_files))},
+       joined({"single_spring.dat", "report_runs.md"},
+              in_folders(joined(prefixed("explicit_euler_"), prefixed("symplectic_euler_")), run_files))},
       {"ch03_runge_kutta", {}, ch03_files},
       {"ch03_runge_kutta", {"--report-runs"}, joined({"order.dat"}, in_folders(prefixed("rk4_"), ch03_files))},
       {"ch04_implicit_euler", {}, run_files},
@@ -179,25 +180,15 @@ std::vector<ProgramOutputs> every_output() {
         "controllers.md", "jump_response.dat", "jump_response.md", "estimate_check.dat", "estimate_summary.dat",
         "estimate_check.md"}},
 #endif
-#ifdef CLOTH_HAVE_CH08_WORK_PRECISION
-      {"ch08_work_precision",
-       {"--quick"},
-       {"work_precision.dat", "levels.dat", "levels.md", "reference.md", "spring_turn.md", "evaluation_cost.md"}},
-#endif
   };
 }
 
 // The cases every_output() makes: one per output, one for the last output's temporary name, one for a subfolder.
-constexpr std::size_t folder_cases_ch01_ch04 = 122;
+constexpr std::size_t folder_cases_ch01_ch04 = 123;
 #ifdef CLOTH_HAVE_CH08_ADAPTIVE_STEP
 constexpr std::size_t folder_cases_ch08 = (5 + 1) + (12 + 1);
 #else
 constexpr std::size_t folder_cases_ch08 = 0;
-#endif
-#ifdef CLOTH_HAVE_CH08_WORK_PRECISION
-constexpr std::size_t folder_cases_ch08_benchmark = 6 + 1;
-#else
-constexpr std::size_t folder_cases_ch08_benchmark = 0;
 #endif
 
 Setup folder_at(const std::string& path) {
@@ -236,7 +227,7 @@ TEST_CASE("matches: '*' spans any text, the rest matches exactly") {
 #if defined(CLOTH_HAVE_CH01_SPRINGS) && defined(CLOTH_HAVE_CH02_EXPLICIT_EULER) && \
     defined(CLOTH_HAVE_CH03_RUNGE_KUTTA) && defined(CLOTH_HAVE_CH04_IMPLICIT_EULER)
 
-TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad input: status 2, nothing written") {
+TEST_CASE("a folder in the way of any output of ch01-ch04 and ch08, in any mode, is bad input: status 2, nothing written") {
   std::vector<Refused> cases;
   for (const ProgramOutputs& p : every_output()) {
     for (const std::string& name : p.outputs)
@@ -250,7 +241,7 @@ TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad i
       cases.push_back({p.program, p.args, "--out: 'out/" + sub + file_in_the_way, file_at("out/" + sub)});
     }
   }
-  CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08 + folder_cases_ch08_benchmark);
+  CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08);
   expect_refused(cases);
 }
 
