@@ -169,6 +169,14 @@ std::vector<ProgramOutputs> every_output() {
                       "cg_run.md", "rk4_agreement.md", "rk4_halving_ratio.md"},
                      in_folders(joined(prefixed("full_"), prefixed("one_")), run_files)),
               in_folders({"definite_K50_D0", "stiff_K100000_h0.1", "cg_K50_D0"}, run_files))},
+      {"ch10_real_cloth",
+       {"--quick"},
+       {"preset.md", "stable_step.md", "stable_step_agreement.md", "stable_step.dat", "practitioner_summary.txt",
+        "curves_K1000.dat", "curves_K10000.dat", "curves_K100000.dat", "curves_K1e+06.dat", "refinement.md",
+        "refinement.dat", "fabric_frames.dat", "step_cost.md", "step_cost.dat", "map_1cm.md", "map_1mm.md", "map.dat",
+        "map_winners.dat", "practitioner_T0.5.md", "practitioner_T0.5_note.md", "displacement_T0.5.md",
+        "verdict_T0.5_1cm.md", "verdict_T0.5_1mm.md", "curves_practitioner_T0.5.dat"}},
+      {"ch10_peers", {"--quick"}, {"peers.md", "peers_ratio.md", "peers_check.md", "peers.dat"}},
   };
 }
 
@@ -222,7 +230,7 @@ TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad i
       cases.push_back({p.program, p.args, "--out: 'out/" + sub + file_in_the_way, file_at("out/" + sub)});
     }
   }
-  CHECK(cases.size() == 122);
+  CHECK(cases.size() == 152);
   expect_refused(cases);
 }
 
@@ -236,6 +244,12 @@ TEST_CASE("hostile flags: given twice, too small to represent, beyond what the m
       {"ch04_implicit_euler", {"--report-runs", "--report-runs"}, "--report-runs: given twice: " + given_twice},
       {"ch02_explicit_euler", {"--out", "a", "--out", "b"}, "--out: given twice ('a', then 'b'): " + given_twice},
       {"ch04_implicit_euler", {"--mass", "2", "--mass", "2"}, "--mass: given twice ('2', then '2'): " + given_twice},
+      {"ch10_real_cloth", {"--quick", "--quick"}, "--quick: given twice: " + given_twice},
+      {"ch10_peers", {"--runs", "2", "--runs", "3"}, "--runs: given twice ('2', then '3'): " + given_twice},
+      // Chapter 10's peer comparison: its scene is fixed, and its repetitions are a whole number from 1 to 100.
+      {"ch10_peers", {"--runs", "0"}, "--runs: expected a whole number from 1 to 100, got '0'"},
+      {"ch10_peers", {"--runs", "1e9"}, "--runs: expected a whole number, got '1e9'"},
+      {"ch10_peers", {"--K", "5"}, "unknown flag '--K' (ch10_peers --help lists the accepted flags)"},
       // Numbers too small to represent normally: subnormal, or rounded to zero.
       {"ch02_explicit_euler", {"--K", "1e-310"}, "--K: '1e-310" + too_small},
       {"ch03_runge_kutta", {"--v0", "-4e-320"}, "--v0: '-4e-320" + too_small},
