@@ -274,19 +274,13 @@ double best_time(int runs, double budget, Body&& body) {
   return best;
 }
 
-double max_distance_all(const Vector& a, const Vector& b) {
-  double worst = 0;
-  for (Eigen::Index k = 0; k + 2 < a.size(); k += 3) worst = std::max(worst, (a.segment<3>(k) - b.segment<3>(k)).norm());
-  return worst;
-}
-
 std::string step_text(long long steps) {
   const double per_second = static_cast<double>(steps) / T;
   if (std::abs(per_second - std::round(per_second)) < 1e-9 * per_second) return format("1/%.0f", per_second);
   return format("%.3g", T / static_cast<double>(steps));
 }
 
-// The fastest row of `side` (any side when empty) whose error at T is at most tol.
+// The fastest row of the book's methods (book) or of the peers (!book) whose error at T is at most tol.
 const Row* fastest(const std::vector<Row>& rows, bool book, double tol) {
   const Row* best = nullptr;
   for (const Row& r : rows)
@@ -412,7 +406,7 @@ int main(int argc, char** argv) {
       if (out.ok) {
         const Vector x = system.positions(out.y);
         if (x.allFinite() && x.cwiseAbs().maxCoeff() < 100)
-          row.error = max_distance_all(x, reference);
+          row.error = ch10::max_distance(x, reference);
         else
           row.ok = false, row.note = "diverged";
       }
@@ -466,7 +460,7 @@ int main(int argc, char** argv) {
       if (r.ok) {
         Vector all(3 * scene.particle_count());
         scene.all_positions(r.x, all);
-        row.error = max_distance_all(all, reference);
+        row.error = ch10::max_distance(all, reference);
       }
       std::printf("  %-34s %-18s %7lld steps %8.4f s  error %.2e %s\n", row.program.c_str(), row.setting.c_str(),
                   row.steps, row.seconds, row.error, row.note.c_str());
