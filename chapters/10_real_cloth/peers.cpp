@@ -4,15 +4,14 @@
 // analytic Jacobian), each once with a plain loop over the springs (plain_fabric.hpp) and once driving the book's
 // own force routine, against the book's methods from the registry. Every run's error is the chapter's: the
 // largest distance of a particle at T from where the reference (RK4 at a quarter of its stable step) puts it.
-// Writes peers.md (the table), peers_ratio.md (the sentence that compares the fastest of each side) and
-// peers.dat to --out.
+// Writes peers.md (the table), peers_ratio.md (the sentence that compares the fastest of each side),
+// peers_check.md (the plain loop against the book's forces) and peers.dat to --out.
 #include "plain_fabric.hpp"
 #include "study.hpp"
 
 #include "analysis/lattice_frequency.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/method_registry.hpp"
 #include "program/command_line.hpp"
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
@@ -28,7 +27,6 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <memory>
 #include <string>
 #include <vector>
 
