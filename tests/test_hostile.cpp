@@ -79,6 +79,8 @@ void write_inputs(const fs::path& dir) {
   write("dup_order.tableau", "order 4\n" + std::string(rk4_rows) + "order 4\n");
   write("low_order.tableau", "order 2\n" + std::string(rk4_rows));
   write("high_order.tableau", "order 3\n0 0 0\n1 1 0\nb 1/2 1/2\n");
+  write("no_bhat.tableau", "order 4\n" + std::string(rk4_rows));
+  write("bhat_wrong.tableau", "order 2\nembedded_order 1\n0 0 0\n1 1 0\nb 1/2 1/2\nbhat 1 1\n");
   write("huge.tableau", "order 4\n" + std::string(rk4_rows) + std::string(70000 - 8 - std::strlen(rk4_rows), '#'));
   ::mkfifo((dir / "fifo").c_str(), 0644);
   fs::create_directory(dir / "folder");
@@ -158,7 +160,8 @@ std::vector<ProgramOutputs> every_output() {
       {"ch02_explicit_euler", {"--single-spring"}, {"single_spring.dat"}},
       {"ch02_explicit_euler",
        {"--report-runs"},
-       joined({"single_spring.dat"}, in_folders(joined(prefixed("explicit_euler_"), prefixed("symplectic_euler_")), run_files))},
+       joined({"single_spring.dat", "report_runs.md"},
+              in_folders(joined(prefixed("explicit_euler_"), prefixed("symplectic_euler_")), run_files))},
       {"ch03_runge_kutta", {}, ch03_files},
       {"ch03_runge_kutta", {"--report-runs"}, joined({"order.dat"}, in_folders(prefixed("rk4_"), ch03_files))},
       {"ch04_implicit_euler", {}, run_files},
@@ -170,13 +173,34 @@ std::vector<ProgramOutputs> every_output() {
                       "cg_run.md", "rk4_agreement.md", "rk4_halving_ratio.md"},
                      in_folders(joined(prefixed("full_"), prefixed("one_")), run_files)),
               in_folders({"definite_K50_D0", "stiff_K100000_h0.1", "cg_K50_D0"}, run_files))},
+#ifdef CLOTH_HAVE_CH08_ADAPTIVE_STEP
+      {"ch08_adaptive_step", {}, joined(run_files, {"steps.dat"})},
+      {"ch08_adaptive_step",
+       {"--experiments", "--quick"},
+       {"pairs.md", "order_conditions.md", "tree_counts.md", "hard_case.dat", "hard_case.md", "pairs.dat",
+        "controllers.md", "jump_response.dat", "jump_response.md", "estimate_check.dat", "estimate_summary.dat",
+        "estimate_check.md"}},
+#endif
+#ifdef CLOTH_HAVE_CH10_REAL_CLOTH
+      {"ch10_real_cloth",
+       {"--quick"},
+       {"preset.md", "stable_step.md", "stable_step_agreement.md", "stable_step.dat", "practitioner_summary.txt",
+        "curves_K1000.dat", "curves_K10000.dat", "curves_K100000.dat", "curves_K1e+06.dat", "refinement.md",
+        "refinement.dat", "fabric_frames.dat", "step_cost.md", "step_cost.dat", "map_1cm.md", "map_1mm.md", "map.dat",
+        "map_winners.dat", "practitioner_T0.5.md", "practitioner_T0.5_note.md", "displacement_T0.5.md",
+        "verdict_T0.5_1cm.md", "verdict_T0.5_1mm.md", "curves_practitioner_T0.5.dat"}},
+#endif
+#ifdef CLOTH_HAVE_CH10_PEERS
+      {"ch10_peers", {"--quick"}, {"peers.md", "peers_ratio.md", "peers_check.md", "peers.dat"}},
+#endif
   };
 }
 
-// Chapters 5 to 10: the experiment programs and Chapter 9's single run, their outputs as their pages list them.
+// Chapters 5, 6, 7 and 9: the experiment programs and Chapter 9's single run, their outputs as their pages list
+// them (Chapters 8 and 10 are in every_output()).
 std::vector<ProgramOutputs> later_outputs() {
-  std::vector<std::string> ch05 = {"summary.dat", "runs.dat", "instants.dat", "cases.dat", "figures.dat",
-                                   "parameters.dat", "theory.txt"};
+  std::vector<std::string> ch05 = {"summary.dat", "summary.md", "runs.dat", "instants.dat", "cases.dat",
+                                   "figures.dat", "parameters.dat", "theory.txt"};
   for (const char* method : {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler"})
     for (const std::string& c : report_cases) {
       const std::string run = std::string(method) + "_" + c;
@@ -206,15 +230,26 @@ std::vector<ProgramOutputs> later_outputs() {
       {"ch07_stability", {}, ch07},
       {"ch09_implicit_runge_kutta", {}, run_files},
       {"ch09_implicit_runge_kutta", {"--report-runs"}, ch09_studies},
-      {"ch10_real_cloth",
-       {"--quick"},
-       {"preset.md", "stable_step.md", "stable_step.dat", "practitioner_T0.5.md", "curves_practitioner_T0.5.dat",
-        "practitioner_summary.txt", "curves_K1000.dat", "curves_K10000.dat", "curves_K100000.dat",
-        "curves_K1e+06.dat", "refinement.md", "refinement.dat", "fabric_frames.dat", "step_cost.md", "step_cost.dat",
-        "map_1cm.md", "map_1mm.md", "map.dat", "map_winners.dat"}},
-      {"ch10_real_cloth", {}, {"practitioner_T1.md", "curves_practitioner_T1.dat"}},
   };
 }
+
+// The cases every_output() makes: one per output, one for the last output's temporary name, one for a subfolder.
+constexpr std::size_t folder_cases_ch01_ch04 = 123;
+#ifdef CLOTH_HAVE_CH08_ADAPTIVE_STEP
+constexpr std::size_t folder_cases_ch08 = (5 + 1) + (12 + 1);
+#else
+constexpr std::size_t folder_cases_ch08 = 0;
+#endif
+#ifdef CLOTH_HAVE_CH10_REAL_CLOTH
+constexpr std::size_t folder_cases_ch10 = 24 + 1;
+#else
+constexpr std::size_t folder_cases_ch10 = 0;
+#endif
+#ifdef CLOTH_HAVE_CH10_PEERS
+constexpr std::size_t folder_cases_ch10_peers = 4 + 1;
+#else
+constexpr std::size_t folder_cases_ch10_peers = 0;
+#endif
 
 Setup folder_at(const std::string& path) {
   return [path](const fs::path& cwd) { fs::create_directories(cwd / path); };
@@ -271,9 +306,10 @@ std::vector<Refused> in_the_way_cases(const std::vector<ProgramOutputs>& program
   return cases;
 }
 
-TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad input: status 2, nothing written") {
+TEST_CASE("a folder in the way of any output of ch01-ch04, ch08 and ch10, in any mode, is bad input: status 2, nothing "
+          "written") {
   const std::vector<Refused> cases = in_the_way_cases(every_output());
-  CHECK(cases.size() == 122);
+  CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08 + folder_cases_ch10 + folder_cases_ch10_peers);
   expect_refused(cases);
 }
 
@@ -287,6 +323,16 @@ TEST_CASE("hostile flags: given twice, too small to represent, beyond what the m
       {"ch04_implicit_euler", {"--report-runs", "--report-runs"}, "--report-runs: given twice: " + given_twice},
       {"ch02_explicit_euler", {"--out", "a", "--out", "b"}, "--out: given twice ('a', then 'b'): " + given_twice},
       {"ch04_implicit_euler", {"--mass", "2", "--mass", "2"}, "--mass: given twice ('2', then '2'): " + given_twice},
+#ifdef CLOTH_HAVE_CH10_REAL_CLOTH
+      {"ch10_real_cloth", {"--quick", "--quick"}, "--quick: given twice: " + given_twice},
+#endif
+#ifdef CLOTH_HAVE_CH10_PEERS
+      {"ch10_peers", {"--runs", "2", "--runs", "3"}, "--runs: given twice ('2', then '3'): " + given_twice},
+      // Chapter 10's peer comparison: its scene is fixed, and its repetitions are a whole number from 1 to 100.
+      {"ch10_peers", {"--runs", "0"}, "--runs: expected a whole number from 1 to 100, got '0'"},
+      {"ch10_peers", {"--runs", "1e9"}, "--runs: expected a whole number, got '1e9'"},
+      {"ch10_peers", {"--K", "5"}, "unknown flag '--K' (ch10_peers --help lists the accepted flags)"},
+#endif
       // Numbers too small to represent normally: subnormal, or rounded to zero.
       {"ch02_explicit_euler", {"--K", "1e-310"}, "--K: '1e-310" + too_small},
       {"ch03_runge_kutta", {"--v0", "-4e-320"}, "--v0: '-4e-320" + too_small},
@@ -412,15 +458,46 @@ TEST_CASE("hostile tableau files: not regular, not text, too large, keys twice, 
   });
 }
 
+#ifdef CLOTH_HAVE_CH08_ADAPTIVE_STEP
+TEST_CASE("hostile adaptive-step flags: tolerances, the first step, the controller, a tableau without b-hat") {
+  const std::string pairs = "(heun_euler, bs32, rkf45, cash_karp, dopri5, tsit5)";
+  expect_refused({
+      {"ch08_adaptive_step", {"--tol", "0"}, "--tol: '0' is not a positive number"},
+      {"ch08_adaptive_step", {"--tol", "1e-400"}, "--tol: '1e-400" + too_small},
+      {"ch08_adaptive_step", {"--tol", "1e-6", "--tol", "1e-7"}, "--tol: given twice ('1e-6', then '1e-7'): " + given_twice},
+      {"ch08_adaptive_step", {"--tol", "1e-6", "--atol", "1e-6"},
+       "--tol: sets rtol and atol both; give either --tol or --rtol/--atol"},
+      {"ch08_adaptive_step", {"--rtol", "-1"}, "--rtol: '-1' is not a positive number"},
+      {"ch08_adaptive_step", {"--atol", "inf"}, "--atol: expected a finite number, got 'inf'"},
+      {"ch08_adaptive_step", {"--first-step", "0"}, "--first-step: '0' is not a positive number"},
+      {"ch08_adaptive_step", {"--first-step", "-1e-3"}, "--first-step: '-1e-3' is not a positive number"},
+      {"ch08_adaptive_step", {"--controller", "pid"}, "--controller: 'pid' is not a controller: expected elementary or pi"},
+      {"ch08_adaptive_step", {"--norm", "l1"}, "--norm: 'l1' is not an error norm: expected rms or max"},
+      {"ch08_adaptive_step", {"--max-spring-turn", "0"}, "--max-spring-turn: '0' is not a positive number"},
+      // the step is chosen by error control, so --dt is not one of its flags
+      {"ch08_adaptive_step", {"--dt", "0.01"}, "unknown flag '--dt' (ch08_adaptive_step --help lists the accepted flags)"},
+      {"ch08_adaptive_step", {"--tableau", "rk4"},
+       "--tableau: 'rk4' is neither a built-in embedded pair " + pairs + " nor a readable file"},
+      {"ch08_adaptive_step", {"--tableau", "@S/no_bhat.tableau"},
+       "--tableau: @S/no_bhat.tableau: the tableau has no embedded row: an adaptive step needs a second weight row "
+       "'bhat ...' with its 'embedded_order q'"},
+      {"ch08_adaptive_step", {"--tableau", "@S/bhat_wrong.tableau"},
+       "--tableau: @S/bhat_wrong.tableau: tableau '@S/bhat_wrong.tableau': claims order 1 for bhat but the order-1 "
+       "condition sum bhat_i = 1 (tree t) fails by 1"},
+      {"ch08_adaptive_step", {"--tableau", "@S/fifo"}, "--tableau: '@S/fifo' is a FIFO (named pipe): expected a regular text file"},
+  });
+}
+#endif
+
 #endif
 
 #if defined(CLOTH_HAVE_CH05_REPORT_FIGURES) && defined(CLOTH_HAVE_CH06_SPEED_VS_ERROR) && \
     defined(CLOTH_HAVE_CH06_ODEINT_PEER) && defined(CLOTH_HAVE_CH07_STABILITY) && \
     defined(CLOTH_HAVE_CH09_IMPLICIT_RUNGE_KUTTA) && defined(CLOTH_HAVE_CH10_REAL_CLOTH)
 
-TEST_CASE("a folder in the way of any output of ch05-ch10, in any mode, is bad input: status 2, nothing written") {
+TEST_CASE("a folder in the way of any output of ch05-ch07 and ch09, in any mode, is bad input: status 2, nothing written") {
   const std::vector<Refused> cases = in_the_way_cases(later_outputs());
-  CHECK(cases.size() == 231 + 4 * cloth::builtin_implicit_tableaus().size());
+  CHECK(cases.size() == 210 + 4 * cloth::builtin_implicit_tableaus().size());
   expect_refused(cases);
 }
 

@@ -50,6 +50,7 @@ struct Settings {
   int threads = 2;
   bool sweep = true;
   double sweep_t_end_implicit = 0;  ///< T of implicit Euler's sweep runs
+  std::string command;              ///< the reader's command line, for the page's fragment (cloth::reader_command)
 };
 
 /// The files the program writes into --out (figure data, tables, and each figure run's folder runs/NAME/), with
@@ -74,7 +75,7 @@ std::string run_name(const Run& run);
 
 /// What the figures and tables say of a run's energy, relative to E(0).
 struct EnergyMeasures {
-  double gain = 0, final_change = 0;
+  double gain = 0, final_change = 0, peak = 1;
 };
 EnergyMeasures energy_measures(const std::vector<cloth::EnergySample>& energy);
 
