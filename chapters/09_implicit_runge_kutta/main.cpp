@@ -4,8 +4,7 @@
 #include "program/command_line.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/bdf2.hpp"
-#include "integrators/explicit_runge_kutta.hpp"
+#include "base/text.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/implicit_step_control.hpp"
 #include "integrators/simulate.hpp"
@@ -16,6 +15,7 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <sys/stat.h>
 #include <string>
 #include <vector>
 
@@ -32,17 +32,44 @@ const char* treatment_name(StiffnessTreatment t) {
   return "?";
 }
 
-// What the command line chose: a tableau or BDF2, Newton's settings, and step control.
+// What the command line chose: a registered implicit method or a tableau file, Newton's settings, step control.
 struct MethodChoice {
   std::string argument = "sdirk2";  // --tableau as given
-  bool bdf2 = false;
-  ImplicitTableau tableau;
+  const Method* row = nullptr;      // the registry's row, or nullptr for a tableau file
+  ImplicitTableau tableau;          // the tableau, for a Runge-Kutta method (empty for a multistep one)
   NewtonSettings newton;
   std::optional<double> tol;  // --tol: step control
+
+  [[nodiscard]] bool multistep() const { return row != nullptr && row->family == MethodFamily::multistep; }
 };
 
-std::unique_ptr<Stepper> make_method(const MethodChoice& choice, ForceField& field) {
-  if (choice.bdf2) return std::make_unique<Bdf2>(field, choice.newton);
+// A registered method by its name, or else a tableau file; the message lists the registered names.
+MethodChoice choose(const std::string& argument) {
+  MethodChoice choice;
+  choice.argument = argument;
+  std::string names;
+  for (const Method* m : newton_methods()) {
+    if (m->name == argument) choice.row = m;
+    names += (names.empty() ? "" : ", ") + m->name;
+  }
+  if (choice.row != nullptr) {
+    if (!choice.multistep()) choice.tableau = builtin_implicit_tableau(argument);
+    return choice;
+  }
+  struct stat info {};
+  if (::stat(argument.c_str(), &info) != 0)
+    throw InputError("--tableau: '" + escaped(argument) + "' is neither a registered implicit method (" + names +
+                     ") nor a readable tableau file");
+  try {
+    choice.tableau = read_implicit_tableau(argument);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--tableau: ") + e.what());
+  }
+  return choice;
+}
+
+std::unique_ptr<NewtonStepper> make_method(const MethodChoice& choice, ForceField& field) {
+  if (choice.row != nullptr) return make_newton_stepper(choice.row->name, field, {choice.newton});
   return std::make_unique<DiagonallyImplicitRungeKutta>(field, choice.tableau, choice.newton);
 }
 
@@ -50,8 +77,8 @@ std::unique_ptr<Stepper> make_method(const MethodChoice& choice, ForceField& fie
 std::vector<std::pair<std::string, std::string>> method_lines(const MethodChoice& choice, const Stepper& stepper,
                                                               const RunResult& result, const NewtonSettings& newton) {
   std::vector<std::pair<std::string, std::string>> lines;
-  if (choice.bdf2) {
-    lines.emplace_back("tableau", "bdf2 (multistep)");
+  if (choice.multistep()) {
+    lines.emplace_back("tableau", choice.row->name + " (multistep)");
     lines.emplace_back("order", "2");
   } else {
     lines.emplace_back("tableau", choice.tableau.method.name);
@@ -75,7 +102,7 @@ int run_cloth(const SceneParams& params, const RunSettings& run, const MethodCho
   const Scene scene(params);
   validate(choice.newton, scene);  // before anything is written
   ForceField field(scene);
-  const std::unique_ptr<Stepper> stepper = make_method(choice, field);
+  const std::unique_ptr<NewtonStepper> stepper = make_method(choice, field);
   prepare_output_dir(run.out_dir);
   RunResult result;
   std::vector<std::pair<std::string, std::string>> extra;
@@ -83,7 +110,7 @@ int run_cloth(const SceneParams& params, const RunSettings& run, const MethodCho
     StepControl control;
     control.tolerance = *choice.tol;
     ControlledRun controlled =
-        simulate_controlled(static_cast<DiagonallyImplicitRungeKutta&>(*stepper), run, control);
+        simulate_controlled(dynamic_cast<DiagonallyImplicitRungeKutta&>(*stepper), run, control);
     result = std::move(controlled.result);
     extra = method_lines(choice, *stepper, result, choice.newton);
     extra.emplace_back("tol", format_number(*choice.tol, 10));
@@ -107,21 +134,14 @@ int run_cloth(const SceneParams& params, const RunSettings& run, const MethodCho
   return status;
 }
 
-// The methods the studies compare: every built-in tableau and BDF2, with full Newton.
+// The methods the studies compare: every registered method StageNewton solves, in the registry's order.
 std::vector<MethodChoice> study_methods(const NewtonSettings& newton) {
   std::vector<MethodChoice> methods;
-  for (const ImplicitTableau& t : builtin_implicit_tableaus()) {
-    MethodChoice m;
-    m.argument = t.method.name;
-    m.tableau = t;
-    m.newton = newton;
-    methods.push_back(m);
+  for (const Method* m : newton_methods()) {
+    MethodChoice choice = choose(m->name);
+    choice.newton = newton;
+    methods.push_back(choice);
   }
-  MethodChoice b;
-  b.argument = "bdf2";
-  b.bdf2 = true;
-  b.newton = newton;
-  methods.push_back(b);
   return methods;
 }
 
@@ -156,11 +176,11 @@ void energy_study(const Options& opt, const NewtonSettings& newton, const std::s
 Vector reference_positions(const SceneParams& p, double T, double h_ref) {
   const Scene scene(p);
   ForceField field(scene);
-  ExplicitRungeKutta rk4(field, tableau_from_argument("rk4"));
+  const auto rk4 = make_stepper("rk4", field);
   RunSettings run;
   run.dt = h_ref;
   run.t_end = T;
-  const RunResult r = simulate(rk4, run, false);
+  const RunResult r = simulate(*rk4, run, false);
   if (r.status != RunStatus::ok) throw InputError("the RK4 reference failed: " + r.message);
   return r.x;
 }
@@ -188,7 +208,7 @@ void work_precision(const SceneParams& p, double T, const std::vector<double>& h
         double best = INFINITY;
         RunResult r;
         for (int k = 0; k < repeats; ++k) {
-          const std::unique_ptr<Stepper> stepper = make_method(m, field);
+          const std::unique_ptr<NewtonStepper> stepper = make_method(m, field);
           r = simulate(*stepper, run, false);
           best = std::min(best, r.wall_seconds);
         }
@@ -242,10 +262,11 @@ int main(int argc, char** argv) {
                   "Chapter 9: a diagonally implicit Runge-Kutta method from its Butcher tableau, or BDF2, on the\n"
                   "report's cloth; each stage solved by Newton's method on M - h a_ii df/dv - (h a_ii)^2 df/dx.");
   std::string names;
-  for (const ImplicitTableau& t : builtin_implicit_tableaus()) names += t.method.name + ", ";
-  cli.add_value("--tableau", "NAME|FILE|bdf2",
-                "a built-in diagonally implicit tableau (" + names + "default sdirk2), a tableau file, or bdf2",
-                [&](const std::string& s) { choice.argument = s; });
+  for (const Method* m : newton_methods()) names += m->name + ", ";
+  std::string tableau_argument = "sdirk2";
+  cli.add_value("--tableau", "NAME|FILE",
+                "a registered implicit method (" + names + "default sdirk2) or a diagonally implicit tableau file",
+                [&](const std::string& s) { tableau_argument = s; });
   cli.add_value("--tol", "TOL",
                 "step control on the embedded error estimate, max |e| / (1 + |y|) <= TOL (embedded pairs only: "
                 "trbdf2); --dt is then the first step",
@@ -303,16 +324,14 @@ int main(int argc, char** argv) {
                  [&] { quick = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    if (choice.argument == "bdf2") {
-      choice.bdf2 = true;
-    } else {
-      try {
-        choice.tableau = implicit_tableau_from_argument(choice.argument);
-      } catch (const InputError& e) {
-        throw InputError(std::string("--tableau: ") + e.what() + "; bdf2 names the multistep method");
-      }
+    {
+      const NewtonSettings newton = choice.newton;
+      const std::optional<double> tol = choice.tol;
+      choice = choose(tableau_argument);
+      choice.newton = newton;
+      choice.tol = tol;
     }
-    if (choice.tol && (choice.bdf2 || !choice.tableau.has_embedded()))
+    if (choice.tol && (choice.multistep() || !choice.tableau.has_embedded()))
       throw InputError("--tol: step control needs an embedded pair, and " + choice.argument +
                        " has no embedded weights: use --tableau trbdf2, or leave --tol out for fixed steps");
     if (variant) choice.newton.variant = *variant;

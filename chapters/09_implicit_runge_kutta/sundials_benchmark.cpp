@@ -5,7 +5,6 @@
 #include "program/command_line.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/output.hpp"
@@ -203,11 +202,11 @@ int main(int argc, char** argv) {
     SUNContext_Free(&context);
     std::string error = "not computed";
     if (compare && out.ok) {
-      ExplicitRungeKutta rk4(field, tableau_from_argument("rk4"));
+      const auto rk4 = make_stepper("rk4", field);
       RunSettings run;
       run.dt = 1e-5;
       run.t_end = opt.run.t_end;
-      const RunResult reference = simulate(rk4, run, false);
+      const RunResult reference = simulate(*rk4, run, false);
       error = format_number((x - reference.x).lpNorm<Eigen::Infinity>(), 4);
     }
     write_final(opt.run.out_dir + "/final.dat", scene, x, v);

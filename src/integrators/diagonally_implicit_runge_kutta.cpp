@@ -5,7 +5,7 @@ namespace cloth {
 
 DiagonallyImplicitRungeKutta::DiagonallyImplicitRungeKutta(ForceField& field, ImplicitTableau tableau,
                                                            NewtonSettings settings)
-    : Stepper(field), tableau_(std::move(tableau)), newton_(field, settings, counters_) {
+    : NewtonStepper(field, settings), tableau_(std::move(tableau)) {
   validate(tableau_);
   const int s = tableau_.method.stages();
   const int n = field.dof_count();
@@ -24,11 +24,8 @@ DiagonallyImplicitRungeKutta::DiagonallyImplicitRungeKutta(ForceField& field, Im
   }
 }
 
-std::string DiagonallyImplicitRungeKutta::name() const {
-  return tableau_.method.name + "_" + newton_variant_name(settings().one_iteration() ? NewtonVariant::one
-                                                                                      : settings().variant) +
-         "_" + linear_solver_name(settings().solver);
-}
+// The tableau's name, as the registry's row: the Newton variant and the solver are settings, written beside it.
+std::string DiagonallyImplicitRungeKutta::name() const { return tableau_.method.name; }
 
 bool DiagonallyImplicitRungeKutta::step(double h, Vector& x, Vector& v) {
   const ButcherTableau& t = tableau_.method;

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "integrators/implicit_tableaus.hpp"
-#include "integrators/stage_newton.hpp"
+#include "integrators/newton_stepper.hpp"
 
 #include <string>
 #include <vector>
@@ -16,7 +16,7 @@ namespace cloth {
 /// F_j = f(X_j, V_j): the implicit Euler equation of Chapter 4 with h a_ii for h, started from (x~_i, v~_i). The
 /// step is x1 = x0 + h sum_i b_i V_i, v1 = v0 + h M^{-1} sum_i b_i F_i, or the last stage when the tableau is
 /// stiffly accurate.
-class DiagonallyImplicitRungeKutta : public Stepper {
+class DiagonallyImplicitRungeKutta : public NewtonStepper {
  public:
   /// The tableau must pass validate(ImplicitTableau); the settings validate(NewtonSettings). Throws InputError.
   DiagonallyImplicitRungeKutta(ForceField& field, ImplicitTableau tableau, NewtonSettings settings);
@@ -24,11 +24,6 @@ class DiagonallyImplicitRungeKutta : public Stepper {
   bool step(double h, Vector& x, Vector& v) override;
 
   [[nodiscard]] const ImplicitTableau& tableau() const { return tableau_; }
-  [[nodiscard]] const NewtonSettings& settings() const { return newton_.settings(); }
-  /// |r|_inf of the last stage equation solved (each Newton iteration, then after its last update).
-  [[nodiscard]] const std::vector<double>& residual_history() const { return newton_.residual_history(); }
-  [[nodiscard]] const StageNewton::Timing& timing() const { return newton_.timing(); }
-  void reset_timing() { newton_.reset_timing(); }
 
   /// For an embedded pair, after a step: the difference between the step and its embedded companion, in
   /// positions and velocities (h sum_i (b_i - b^_i) V_i and h M^{-1} sum_i (b_i - b^_i) F_i).
@@ -37,7 +32,6 @@ class DiagonallyImplicitRungeKutta : public Stepper {
 
  private:
   ImplicitTableau tableau_;
-  StageNewton newton_;
   std::vector<Vector> V_, F_;   // stage velocities and forces
   std::vector<bool> need_force_;  // whether F_i is used (by a later stage or the weights)
   Vector x_tilde_, v_tilde_, error_x_, error_v_;
