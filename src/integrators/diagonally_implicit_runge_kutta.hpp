@@ -15,7 +15,8 @@ namespace cloth {
 /// and its velocity solves M (V_i - v~_i) = h a_ii f(X_i, V_i), v~_i = v0 + h M^{-1} sum_{j<i} a_ij F_j, with
 /// F_j = f(X_j, V_j): the implicit Euler equation of Chapter 4 with h a_ii for h, started from (x~_i, v~_i). The
 /// step is x1 = x0 + h sum_i b_i V_i, v1 = v0 + h M^{-1} sum_i b_i F_i, or the last stage when the tableau is
-/// stiffly accurate.
+/// stiffly accurate. Newton starts each stage from V_i = v~_i + h a_ii M^{-1} F, F the latest stage force known
+/// (of this step, or the last one of the step before): the stage equation with a known force in place of its own.
 class DiagonallyImplicitRungeKutta : public NewtonStepper {
  public:
   /// The tableau must pass validate(ImplicitTableau); the settings validate(NewtonSettings). Throws InputError.
@@ -35,6 +36,10 @@ class DiagonallyImplicitRungeKutta : public NewtonStepper {
   std::vector<Vector> V_, F_;   // stage velocities and forces
   std::vector<bool> need_force_;  // whether F_i is used (by a later stage or the weights)
   Vector x_tilde_, v_tilde_, error_x_, error_v_;
+  // The predictor's force: the last stage force of the step before, when the step continues the state that step
+  // produced (x_last_, v_last_); f(x1, v1) itself for a stiffly accurate method.
+  Vector last_force_, x_last_, v_last_;
+  bool have_last_force_ = false;
 };
 
 }  // namespace cloth
