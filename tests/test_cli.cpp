@@ -257,6 +257,28 @@ TEST_CASE("ch03_runge_kutta: bad tableau names and files are refused, naming the
 }
 #endif
 
+#ifdef CLOTH_HAVE_CH08_ADAPTIVE_STEP
+TEST_CASE("ch08_adaptive_step: bad input gives status 2, one line naming the flag, nothing written") {
+  expect_refused("ch08_adaptive_step", shared_flag_cases());
+  expect_refused("ch08_adaptive_step",
+                 {
+                     {{"--tol", "0"}, {"--tol", "'0' is not a positive number"}},
+                     {{"--tol", "-1e-6"}, {"--tol", "not a positive number"}},
+                     {{"--tol", "nan"}, {"--tol"}},
+                     {{"--tol", "inf"}, {"--tol"}},
+                     {{"--rtol", "abc"}, {"--rtol"}},
+                     {{"--atol", "0"}, {"--atol", "not a positive number"}},
+                     {{"--tol", "1e-6", "--rtol", "1e-6"}, {"--tol", "either --tol or --rtol/--atol"}},
+                     {{"--first-step", "0"}, {"--first-step", "not a positive number"}},
+                     {{"--controller", "pid"}, {"--controller", "'pid'", "elementary or pi"}},
+                     {{"--norm", "l1"}, {"--norm", "'l1'", "rms or max"}},
+                     {{"--tableau", "rk4"}, {"--tableau", "'rk4'", "dopri5", "tsit5"}},
+                     {{"--tableau", "@S/implicit.tableau"}, {"--tableau", "implicit.tableau", "implicit"}},
+                     {{"--quick"}, {"--quick", "only with --experiments"}},
+                 });
+}
+#endif
+
 #ifdef CLOTH_HAVE_CH04_IMPLICIT_EULER
 TEST_CASE("ch04_implicit_euler: bad input gives status 2, one line naming the flag, nothing written") {
   expect_refused("ch04_implicit_euler", shared_flag_cases());

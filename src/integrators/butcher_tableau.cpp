@@ -1,14 +1,15 @@
-// Butcher tableaus: the order conditions that check them, and the tableau file format.
+// Butcher tableaus: the order conditions that check them (generated from the rooted trees, for b and for an
+// embedded pair's b-hat), and the tableau file format.
 #include "integrators/butcher_tableau.hpp"
 
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "base/text.hpp"
 #include "base/text_file.hpp"
+#include "integrators/order_conditions.hpp"
 
 #include <cmath>
 #include <sstream>
-#include <sys/stat.h>
 
 namespace cloth {
 
@@ -19,30 +20,52 @@ constexpr double tolerance = 1e-12;
 
 }  // namespace
 
-double order_condition_defect(const ButcherTableau& t, int p) {
-  const Eigen::VectorXd& b = t.b;
-  const Eigen::VectorXd& c = t.c;
-  const Eigen::VectorXd Ac = t.A * c;
-  double defect = 0;
-  const auto check = [&](double lhs, double rhs) { defect = std::max(defect, std::abs(lhs - rhs)); };
-  // The conditions of order p are the rooted trees with p nodes (Butcher 2016, Table 312(I)).
-  switch (p) {
-    case 1: check(b.sum(), 1.0); break;
-    case 2: check(b.dot(c), 1.0 / 2); break;
-    case 3:
-      check(b.dot(c.cwiseProduct(c)), 1.0 / 3);
-      check(b.dot(Ac), 1.0 / 6);
-      break;
-    case 4:
-      check(b.dot(c.array().cube().matrix()), 1.0 / 4);
-      check(b.dot(c.cwiseProduct(Ac)), 1.0 / 8);
-      check(b.dot(t.A * c.cwiseProduct(c)), 1.0 / 12);
-      check(b.dot(t.A * Ac), 1.0 / 24);
-      break;
-    default: break;
-  }
-  return defect;
+bool ButcherTableau::first_same_as_last() const {
+  const int s = stages();
+  return s >= 2 && b[s - 1] == 0.0 && A.row(s - 1).transpose() == b;
 }
+
+double order_condition_defect(const ButcherTableau& t, int p, bool embedded) {
+  return order_condition_defect(t.A, embedded ? t.b_hat : t.b, p);
+}
+
+namespace {
+
+// The conditions of orders 1..order for one weight row, each stated as its sum when it fails.
+void check_order(const ButcherTableau& t, const std::string& who, const Eigen::VectorXd& w, int order,
+                 const std::string& row) {
+  if (order < 1 || order > max_tree_order)
+    throw InputError(who + "claims order " + std::to_string(order) + " for " + row + ": expected an order from 1 to " +
+                     std::to_string(max_tree_order) + " (the conditions this program generates)");
+  for (int p = 1; p <= order; ++p) {
+    int worst = -1;
+    const double defect = order_condition_defect(t.A, w, p, &worst);
+    if (defect > tolerance) {
+      const RootedTree& tree = rooted_trees()[static_cast<std::size_t>(worst)];
+      std::string condition = tree.condition;
+      if (row != "b") condition.replace(condition.find("b_i"), 3, "bhat_i");
+      std::string message = who + "claims order " + std::to_string(order);
+      if (row != "b") message += " for " + row;
+      message += " but the order-" + std::to_string(p) + " condition " + condition;
+      message += " (tree " + tree.bracket + ") fails by " + format_number(defect, 17);
+      throw InputError(message);
+    }
+  }
+  // A claim below what the conditions give would label the method's results (the observed order of Chapter 3,
+  // the tables of Chapter 6, the step control of Chapter 8) with the wrong order.
+  int satisfied = order;
+  while (satisfied < max_tree_order && order_condition_defect(t.A, w, satisfied + 1) <= tolerance) ++satisfied;
+  if (satisfied > order) {
+    const std::string key = row == "b" ? "order" : "embedded_order";
+    std::string message = who + "claims order " + std::to_string(order);
+    if (row != "b") message += " for " + row;
+    message += " but satisfies the order conditions through order " + std::to_string(satisfied);
+    message += ": expected '" + key + " " + std::to_string(satisfied) + "'";
+    throw InputError(message);
+  }
+}
+
+}  // namespace
 
 void validate(const ButcherTableau& t) {
   const std::string who = "tableau '" + t.name + "': ";
@@ -51,7 +74,11 @@ void validate(const ButcherTableau& t) {
   if (t.A.rows() != s || t.A.cols() != s || t.c.size() != s)
     throw InputError(who + "A must be " + std::to_string(s) + "x" + std::to_string(s) + " to match " +
                      std::to_string(s) + " weights b");
-  if (!t.A.allFinite() || !t.b.allFinite() || !t.c.allFinite()) throw InputError(who + "has a non-finite entry");
+  if (t.has_embedded() && t.b_hat.size() != s)
+    throw InputError(who + "bhat has " + std::to_string(t.b_hat.size()) + " weights: expected " + std::to_string(s) +
+                     ", one per stage as in b");
+  if (!t.A.allFinite() || !t.b.allFinite() || !t.c.allFinite() || !t.b_hat.allFinite())
+    throw InputError(who + "has a non-finite entry");
   for (int i = 0; i < s; ++i)
     for (int j = i; j < s; ++j)
       if (t.A(i, j) != 0.0)
@@ -64,29 +91,11 @@ void validate(const ButcherTableau& t) {
       throw InputError(who + "row " + std::to_string(i + 1) + ": c_" + std::to_string(i + 1) + " = " + format_number(t.c[i], 17) +
                        " but the row sum of A is " + format_number(row_sum, 17) + " (consistency needs c_i = sum_j a_ij)");
   }
-  if (t.order < 1 || t.order > 4)
-    throw InputError(who + "claims order " + std::to_string(t.order) + ": expected an order from 1 to 4 (the "
-                     "conditions this program checks)");
-  // The order conditions, by order, as the error message states them.
-  static const char* const conditions[] = {
-      "",
-      "sum b_i = 1",
-      "sum b_i c_i = 1/2",
-      "sum b_i c_i^2 = 1/3 and sum b_i a_ij c_j = 1/6",
-      "sum b_i c_i^3 = 1/4, sum b_i c_i a_ij c_j = 1/8, sum b_i a_ij c_j^2 = 1/12, sum b_i a_ij a_jk c_k = 1/24"};
-  for (int p = 1; p <= t.order; ++p) {
-    const double defect = order_condition_defect(t, p);
-    if (defect > tolerance)
-      throw InputError(who + "claims order " + std::to_string(t.order) + " but the order-" + std::to_string(p) +
-                       " condition " + conditions[p] + " fails by " + format_number(defect, 17));
+  check_order(t, who, t.b, t.order, "b");
+  if (t.has_embedded()) {
+    check_order(t, who, t.b_hat, t.embedded_order, "bhat");
+    if (t.b_hat == t.b) throw InputError(who + "bhat equals b: the pair would estimate every error as zero");
   }
-  // A claim below what the conditions give would label the method's results (the observed order of Chapter 3,
-  // the tables of Chapter 6) with the wrong order.
-  int satisfied = t.order;
-  while (satisfied < 4 && order_condition_defect(t, satisfied + 1) <= tolerance) ++satisfied;
-  if (satisfied > t.order)
-    throw InputError(who + "claims order " + std::to_string(t.order) + " but satisfies the order conditions through "
-                     "order " + std::to_string(satisfied) + ": expected 'order " + std::to_string(satisfied) + "'");
 }
 
 // A number as a decimal or a fraction p/q, so that tableaus can be written as exactly as they are printed.
@@ -110,16 +119,27 @@ ButcherTableau parse_tableau_entries(const std::string& text, const std::string&
   ButcherTableau t;
   t.name = source;
   t.order = 0;
-  int name_line = 0, order_line = 0;  // where 'name' and 'order' were given, to refuse a second one
   std::vector<std::vector<double>> rows;
   std::vector<int> row_lines;
-  std::vector<double> b;
-  bool have_b = false;
+  std::vector<double> b, b_hat;
+  bool have_b = false, have_b_hat = false;
   std::istringstream in(text);
   std::string line;
   int line_no = 0;
   const auto fail = [&](const std::string& what) {
     throw InputError(source + ":" + std::to_string(line_no) + ": " + what);
+  };
+  int name_line = 0, order_line = 0, embedded_order_line = 0;  // where each key was given, to refuse a second one
+  const auto once = [&](int& first_line, const std::string& key) {
+    if (first_line != 0)
+      fail("'" + key + "' given twice (first on line " + std::to_string(first_line) + "): expected one");
+    first_line = line_no;
+  };
+  const auto order_value = [&](std::istringstream& words, const std::string& key) {
+    std::string o;
+    if (!(words >> o) || o.size() != 1 || o[0] < '1' || o[0] > '0' + max_tree_order)
+      fail("'" + key + "' needs a whole number from 1 to " + std::to_string(max_tree_order));
+    return o[0] - '0';
   };
   while (std::getline(in, line)) {
     ++line_no;
@@ -128,20 +148,21 @@ ButcherTableau parse_tableau_entries(const std::string& text, const std::string&
     std::string first;
     if (!(words >> first)) continue;
     if (first == "name") {
-      if (name_line != 0) fail("'name' given twice (first on line " + std::to_string(name_line) + "): expected one");
-      name_line = line_no;
+      once(name_line, "name");
       if (!(words >> t.name)) fail("'name' needs a value");
     } else if (first == "order") {
-      if (order_line != 0) fail("'order' given twice (first on line " + std::to_string(order_line) + "): expected one");
-      order_line = line_no;
-      std::string o;
-      if (!(words >> o) || o.size() != 1 || o[0] < '1' || o[0] > '4') fail("'order' needs a whole number from 1 to 4");
-      t.order = o[0] - '0';
+      once(order_line, "order");
+      t.order = order_value(words, "order");
+    } else if (first == "embedded_order") {
+      once(embedded_order_line, "embedded_order");
+      t.embedded_order = order_value(words, "embedded_order");
     } else {
-      if (have_b) fail("nothing may follow the 'b' row");
+      const bool weights = first == "b" || first == "bhat";
+      if ((have_b || have_b_hat) && !weights) fail("nothing but the weight rows 'b' and 'bhat' may follow the 'b' row");
+      if ((first == "b" && have_b) || (first == "bhat" && have_b_hat)) fail("a second '" + first + "' row");
       std::vector<double> values;
       std::string token;
-      std::istringstream entries(first == "b" ? line.substr(line.find('b') + 1) : line);
+      std::istringstream entries(weights ? line.substr(line.find(first) + first.size()) : line);
       while (entries >> token) {
         double value = 0;
         if (!parse_tableau_entry(token, value)) fail("'" + token + "' is not a number (write decimals or fractions p/q)");
@@ -150,6 +171,9 @@ ButcherTableau parse_tableau_entries(const std::string& text, const std::string&
       if (first == "b") {
         b = values;
         have_b = true;
+      } else if (first == "bhat") {
+        b_hat = values;
+        have_b_hat = true;
       } else {
         rows.push_back(values);
         row_lines.push_back(line_no);
@@ -159,7 +183,11 @@ ButcherTableau parse_tableau_entries(const std::string& text, const std::string&
   if (rows.empty() && !have_b)
     throw InputError(source + ": empty tableau: expected rows 'c_i a_i1 ... a_is' and a row 'b b_1 ... b_s'");
   if (!have_b) throw InputError(source + ": no 'b' row: expected a last row 'b b_1 ... b_s'");
-  if (t.order == 0) throw InputError(source + ": no 'order' line: expected 'order p' with p from 1 to 4");
+  if (t.order == 0)
+    throw InputError(source + ": no 'order' line: expected 'order p' with p from 1 to " + std::to_string(max_tree_order));
+  if (have_b_hat != (t.embedded_order != 0))
+    throw InputError(source + (have_b_hat ? ": a 'bhat' row needs an 'embedded_order q' line (the order of bhat)"
+                                          : ": an 'embedded_order' line needs a 'bhat' row"));
   const int s = static_cast<int>(b.size());
   if (s == 0) throw InputError(source + ": the 'b' row has no weight");
   if (static_cast<int>(rows.size()) != s)
@@ -177,6 +205,7 @@ ButcherTableau parse_tableau_entries(const std::string& text, const std::string&
     for (int j = 0; j < s; ++j) t.A(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j + 1)];
   }
   t.b = Eigen::Map<const Eigen::VectorXd>(b.data(), s);
+  if (have_b_hat) t.b_hat = Eigen::Map<const Eigen::VectorXd>(b_hat.data(), static_cast<Eigen::Index>(b_hat.size()));
   return t;
 }
 

@@ -47,9 +47,6 @@ std::string divergence_reason(const Vector& x, const Vector& v, double radius) {
   return {};
 }
 
-namespace {
-
-// Records why a run stopped at `step` (1-based), on its way to time t, and says it in one line.
 void stop_run(RunResult& result, RunStatus status, StepFailureKind kind, long long step, double t,
               std::string reason) {
   result.status = status;
@@ -61,8 +58,6 @@ void stop_run(RunResult& result, RunStatus status, StepFailureKind kind, long lo
   if (status == RunStatus::step_failed) result.message.append(" (").append(step_failure_name(kind)).append(")");
   result.message += " at step " + std::to_string(step) + ", t = " + format_number(t) + " s: " + result.reason;
 }
-
-}  // namespace
 
 RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record) {
   ForceField& field = stepper.field();

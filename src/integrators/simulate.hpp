@@ -78,6 +78,11 @@ struct RunResult {
 /// L the cloth's rest diagonal: ten times farther than a particle launched at v0 and falling freely for T could be.
 double divergence_radius(const Scene& scene, double t_end);
 
+/// Records why a run stopped at `step` (1-based), on its way to time t (status, failure kind, step, time,
+/// reason) and says it in one line in result.message: the drivers' shared wording (simulate, adaptive_simulate).
+void stop_run(RunResult& result, RunStatus status, StepFailureKind kind, long long step, double t,
+              std::string reason);
+
 /// Checks (x, v) against divergence_radius; returns an empty string when sane, else what is wrong.
 std::string divergence_reason(const Vector& x, const Vector& v, double radius);
 

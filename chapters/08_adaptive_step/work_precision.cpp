@@ -1,0 +1,259 @@
+// Chapter 8's benchmark: error at T against in-process time for the project's adaptive pairs and for Boost.Odeint's
+// controlled runge_kutta_dopri5 and runge_kutta_cash_karp54, each odeint stepper built twice: as the
+// straightforward program a reader would write (plain_cloth.hpp) and driving the project's own forces. Errors are
+// measured against a long-double reference computed here and checked against a second one.
+#include "plain_cloth.hpp"
+
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
+#include "integrators/adaptive_simulate.hpp"
+#include "integrators/embedded_tableaus.hpp"
+#include "program/command_line.hpp"
+#include "program/output.hpp"
+
+#include <boost/numeric/odeint.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <functional>
+#include <string>
+#include <vector>
+
+using namespace cloth;
+namespace odeint = boost::numeric::odeint;
+
+namespace {
+
+using State = std::vector<double>;
+using LongState = std::vector<long double>;
+
+double thread_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Best of `runs` calls of body(): the run least disturbed by other processes (wall and thread CPU time).
+struct Timing {
+  double wall = 1e300, cpu = 1e300;
+};
+Timing best_of(int runs, const std::function<void()>& body) {
+  Timing best;
+  for (int k = 0; k < runs; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = thread_seconds();
+    body();
+    best.cpu = std::min(best.cpu, thread_seconds() - c0);
+    best.wall = std::min(best.wall, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return best;
+}
+
+// Largest distance of a free particle from the reference at T.
+template <class X>
+double position_error(const X& x, const LongState& ref) {
+  double worst = 0;
+  for (std::size_t k = 0; k + 2 < ref.size() / 2; k += 3) {
+    long double d2 = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const long double d = static_cast<long double>(x[static_cast<Eigen::Index>(k + c)]) - ref[k + c];
+      d2 += d * d;
+    }
+    worst = std::max(worst, static_cast<double>(std::sqrt(d2)));
+  }
+  return worst;
+}
+
+// [reference]
+// The reference: odeint's controlled Dormand-Prince on the plain right-hand side in long double at tolerance
+// `tol`; its credential is its distance from the same computation with Cash-Karp, a different pair.
+template <class Stepper>
+LongState long_double_run(const Scene& scene, double T, double tol, long long& steps) {
+  ch08::PlainCloth<long double> rhs(scene);
+  LongState y = ch08::PlainCloth<long double>::initial_state(scene);
+  steps = static_cast<long long>(odeint::integrate_adaptive(odeint::make_controlled<Stepper>(static_cast<long double>(tol), static_cast<long double>(tol)), std::ref(rhs),
+                                                            y, 0.0L, static_cast<long double>(T), 1e-4L));
+  return y;
+}
+// [reference]
+
+struct Row {
+  std::string series, method;
+  double tol;
+  double error, wall, cpu;
+  long long evaluations;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false;
+  int runs = 5;
+  CommandLine cli("ch08_work_precision",
+                  "Chapter 8: work-precision of the adaptive pairs against Boost.Odeint on the report's cloth.\n"
+                  "--t-end is the horizon (default here 1 s); --K, --damping and the other scene flags apply.");
+  cli.add_switch("--quick", "a reduced sweep for the plots target (well under a minute)", [&] { quick = true; });
+  cli.add_value("--runs", "N", "timed runs per point, the best is kept (default 5)",
+                [&](const std::string& s) { runs = static_cast<int>(parse_integer(s)); if (runs < 1) throw InputError("'" + s + "' is not a positive count"); });
+  return run_program(cli.program(), [&] {
+    const Options opt = cli.parse(argc, argv);
+    bool t_end_given = false;
+    for (int k = 1; k < argc; ++k) t_end_given = t_end_given || std::string(argv[k]) == "--t-end";
+    const double T = t_end_given ? opt.run.t_end : 1.0;
+    prepare_outputs(opt.run.out_dir, {"work_precision.dat", "levels.dat"});
+    const Scene scene(opt.scene);
+    const std::string dir = opt.run.out_dir + "/";
+
+    // The reference and its credential.
+    const double ref_tol = quick ? 1e-11 : 1e-14;
+    long long ref_steps = 0, check_steps = 0;
+    const auto r0 = std::chrono::steady_clock::now();
+    const LongState ref = long_double_run<odeint::runge_kutta_dopri5<LongState, long double, LongState, long double>>(scene, T, ref_tol, ref_steps);
+    const LongState check = long_double_run<odeint::runge_kutta_cash_karp54<LongState, long double, LongState, long double>>(scene, T, ref_tol, check_steps);
+    const double agreement = position_error(Eigen::Map<const Eigen::Matrix<long double, Eigen::Dynamic, 1>>(check.data(), static_cast<Eigen::Index>(check.size())), ref);
+    std::printf("reference: long double, odeint dopri5 and cash_karp54 at tol %g (%lld and %lld steps, %.1f s): "
+                "they agree to %.2e m at T = %g s\n",
+                ref_tol, ref_steps, check_steps,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count(), agreement, T);
+    const double floor = 100 * agreement;  // errors below this are not measurements
+
+    std::vector<Row> rows;
+    std::vector<double> tolerances;
+    for (int k = quick ? 3 : 2; k <= (quick ? 8 : 11); ++k) tolerances.push_back(std::pow(10.0, -k));
+    if (!quick)
+      for (int k = 2; k <= 10; ++k) tolerances.push_back(3 * std::pow(10.0, -k - 1));
+    std::sort(tolerances.begin(), tolerances.end(), std::greater<>());
+
+    RunSettings run = opt.run;
+    run.t_end = T;
+    // [project_runs]
+    // Besides every pair with each norm (PI controller): dopri5 with the elementary controller, and dopri5 refusing
+    // steps across which a spring turns by more than 0.5 rad.
+    const auto project_run = [&](const std::string& series, const ButcherTableau& tableau, double tol,
+                                 const AdaptiveSettings& settings) {
+      ForceField field(scene);
+      EmbeddedRungeKutta rk(field, tableau);
+      AdaptiveResult result;
+      const Timing t = best_of(runs, [&] { result = adaptive_simulate(rk, run, settings, false); });
+      if (result.status != RunStatus::ok) return;
+      rows.push_back({series, tableau.name, tol, position_error(result.x, ref), t.wall, t.cpu,
+                      result.counters.rhs_evaluations});
+    };
+    for (const ButcherTableau& tableau : embedded_tableaus()) {
+      if (tableau.name == "heun_euler") continue;  // order 2: far off the diagram at these errors
+      for (const NormKind norm : {NormKind::rms, NormKind::max})
+      for (const double tol : tolerances) {
+        AdaptiveSettings settings;
+        settings.tolerances = {tol, tol, norm};
+        project_run(std::string("project_") + norm_name(norm), tableau, tol, settings);
+      }
+    }
+    for (const double tol : tolerances) {
+      AdaptiveSettings settings;
+      settings.tolerances = {tol, tol};
+      settings.controller = ControllerKind::elementary;
+      project_run("project_rms_elementary", embedded_tableau_from_argument("dopri5"), tol, settings);
+      settings.controller = ControllerKind::pi;
+      settings.max_spring_turn = 0.5;
+      project_run("project_rms_turn", embedded_tableau_from_argument("dopri5"), tol, settings);
+    }
+    // [project_runs]
+    // [odeint_runs]
+    // Boost.Odeint as its documentation shows it: integrate_adaptive with a controlled stepper made by
+    // make_controlled(atol, rtol), from a first step of 1e-4 s (odeint adapts it from there).
+    const auto odeint_run = [&](const std::string& method, const std::string& series, double tol, auto stepper,
+                                auto&& rhs, long long& calls) {
+      State y = ch08::PlainCloth<double>::initial_state(scene);
+      calls = 0;
+      const Timing t = best_of(runs, [&] {
+        y = ch08::PlainCloth<double>::initial_state(scene);
+        calls = 0;
+        odeint::integrate_adaptive(stepper, [&](const State& s, State& d, double time) { ++calls; rhs(s, d, time); },
+                                   y, 0.0, T, 1e-4);
+      });
+      rows.push_back({series, method, tol,
+                      position_error(Eigen::Map<const Eigen::VectorXd>(y.data(), static_cast<Eigen::Index>(y.size())), ref),
+                      t.wall, t.cpu, calls});
+    };
+    ch08::PlainCloth<double> plain(scene);
+    ForceField field(scene);
+    const int n = scene.dof_count();
+    // The project's forces behind odeint's interface: the flat state seen as (x, v) without a copy.
+    const auto project_rhs = [&](const State& y, State& dydt, double) {
+      Eigen::Map<const Eigen::VectorXd> x(y.data(), n), v(y.data() + n, n);
+      Eigen::Map<Eigen::VectorXd>(dydt.data(), n) = v;
+      field.acceleration(x, v, Eigen::Map<Eigen::VectorXd>(dydt.data() + n, n));
+    };
+    for (const double tol : tolerances) {
+      long long calls = 0;
+      odeint_run("dopri5", "odeint_plain", tol, odeint::make_controlled<odeint::runge_kutta_dopri5<State>>(tol, tol),
+                 plain, calls);
+      odeint_run("cash_karp54", "odeint_plain", tol,
+                 odeint::make_controlled<odeint::runge_kutta_cash_karp54<State>>(tol, tol), plain, calls);
+      odeint_run("dopri5", "odeint_project_forces", tol,
+                 odeint::make_controlled<odeint::runge_kutta_dopri5<State>>(tol, tol), project_rhs, calls);
+      odeint_run("cash_karp54", "odeint_project_forces", tol,
+                 odeint::make_controlled<odeint::runge_kutta_cash_karp54<State>>(tol, tol), project_rhs, calls);
+    }
+    // [odeint_runs]
+
+    OutputFile table(dir + "work_precision.dat");
+    std::fprintf(table.get(), "# series method tol error_at_T_m wall_s cpu_s evaluations  (T = %g s, K = %g, D = %g; "
+                              "reference agreement %.3e m; blocks by series and method)\n",
+                 T, opt.scene.stiffness, opt.scene.damping, agreement);
+    std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+      return a.series != b.series ? a.series < b.series : a.method < b.method;
+    });
+    std::string last;
+    for (const Row& r : rows) {
+      const std::string key = r.series + " " + r.method;
+      if (!last.empty() && key != last) std::fprintf(table.get(), "\n\n");
+      last = key;
+      if (r.error < floor) continue;
+      std::fprintf(table.get(), "%s %s %.1e %.6e %.6e %.6e %lld\n", r.series.c_str(), r.method.c_str(), r.tol, r.error,
+                   r.wall, r.cpu, r.evaluations);
+    }
+    table.commit();
+
+    // [levels]
+    // At each error level: the cheapest run of each series that reaches it (thread CPU time, best of the timed
+    // runs: on a shared machine the wall clock also counts the time the thread waited for a core), and the
+    // ratios of the speed target.
+    OutputFile levels(dir + "levels.dat");
+    std::fprintf(levels.get(), "# (thread CPU seconds) level_m project_best project_seconds odeint_dopri5_plain_s odeint_cash_karp54_plain_s "
+                               "odeint_dopri5_project_forces_s odeint_cash_karp54_project_forces_s "
+                               "ratio_to_dopri5_plain ratio_to_best_odeint_project_forces\n");
+    for (int k = 3; k <= 8; ++k) {
+      const double level = std::pow(10.0, -k);
+      if (level < floor) continue;  // not measurable against this reference
+      const auto cheapest = [&](const std::string& series, const std::string& method, std::string* which) {
+        double best = 1e300;
+        for (const Row& r : rows)
+          if (r.series.rfind(series, 0) == 0 && (method.empty() || r.method == method) && r.error <= level &&
+              r.cpu < best) {
+            best = r.cpu;
+            if (which) *which = r.series.substr(8) + ":" + r.method + "@" + format_number(r.tol, 2);
+          }
+        return best < 1e300 ? best : std::nan("");  // nan: no run of the series reached the level
+      };
+      std::string which = "-";
+      const double mine = cheapest("project", "", &which);
+      const double dp = cheapest("odeint_plain", "dopri5", nullptr), ck = cheapest("odeint_plain", "cash_karp54", nullptr);
+      const double dpf = cheapest("odeint_project_forces", "dopri5", nullptr);
+      const double ckf = cheapest("odeint_project_forces", "cash_karp54", nullptr);
+      std::fprintf(levels.get(), "%.0e %s %.4e %.4e %.4e %.4e %.4e %.3f %.3f\n", level, which.c_str(), mine, dp, ck, dpf,
+                   ckf, mine / dp, mine / std::min(dpf, ckf));
+      std::printf("error <= %.0e m: project %s %.2f ms | odeint plain dopri5 %.2f ms, cash_karp54 %.2f ms | odeint on "
+                  "the project's forces dopri5 %.2f ms, cash_karp54 %.2f ms | project / plain dopri5 = %.2f, project / "
+                  "best odeint on project forces = %.2f\n",
+                  level, which.c_str(), 1e3 * mine, 1e3 * dp, 1e3 * ck, 1e3 * dpf, 1e3 * ckf, mine / dp,
+                  mine / std::min(dpf, ckf));
+    }
+    levels.commit();
+    // [levels]
+    return 0;
+  });
+}
