@@ -198,7 +198,7 @@ TEST_CASE("the registered implicit tableaus satisfy their order conditions, TR-B
   }
   const ImplicitTableau trbdf2 = tableau("trbdf2");
   ButcherTableau embedded = trbdf2.method;
-  embedded.b = trbdf2.b_hat;
+  embedded.b = trbdf2.method.b_hat;
   CHECK(order_condition_defect(embedded, 3) <= 1e-14);
   CHECK(trbdf2.stiffly_accurate());
   CHECK(trbdf2.explicit_first_stage());
@@ -294,8 +294,8 @@ TEST_CASE("a tableau file carries an embedded pair: bhat and embedded_order, che
   const std::string rows = "order 2\n0 0 0\n1 1/2 1/2\nb 1/2 1/2\n";
   const ImplicitTableau pair = parse_implicit_tableau(rows + "bhat 1 0\nembedded_order 1\n", "pair");
   REQUIRE(pair.has_embedded());
-  CHECK(pair.embedded_order == 1);
-  CHECK(pair.b_hat == Eigen::Vector2d(1, 0));
+  CHECK(pair.method.embedded_order == 1);
+  CHECK(pair.method.b_hat == Eigen::Vector2d(1, 0));
   CHECK(pair.method.b == Eigen::Vector2d(0.5, 0.5));
   const auto refusal = [&](const std::string& extra) {
     try {

@@ -8,6 +8,7 @@
 #include "integrators/method_registry.hpp"
 #include "integrators/implicit_step_control.hpp"
 #include "integrators/simulate.hpp"
+#include "program/fragment.hpp"
 #include "program/output.hpp"
 #include "program/run_outputs.hpp"
 
@@ -150,7 +151,7 @@ std::vector<MethodChoice> study_methods(const NewtonSettings& newton) {
 // Every method on the undamped cloth (D = 0) at the run's h to its T: energy.dat per method in its own folder,
 // and energy_summary.dat with E(T) / E(0) and the work.
 void energy_study(const Options& opt, const NewtonSettings& newton, const std::string& dir,
-                  const std::string& program) {
+                  const std::string& program, const std::string& command) {
   SceneParams p = opt.scene;
   p.damping = 0;
   OutputFile summary(dir + "/energy_summary.dat");
@@ -158,6 +159,9 @@ void energy_study(const Options& opt, const NewtonSettings& newton, const std::s
                "max_E/E(0) newton_iterations factorizations wall_seconds\n", p.stiffness, opt.run.dt, opt.run.t_end);
   NewtonSettings kept = newton;
   kept.variant = NewtonVariant::modified;  // converged to the same tolerance as full Newton, at a fraction of the cost
+  MarkdownTable table({"undamped cloth, h = " + format_number(opt.run.dt) + " s, T = " + format_number(opt.run.t_end) +
+                           " s", "E(T) / E(0)", "smallest E / E(0)", "largest E / E(0)"},
+                      "lrrr");
   for (const MethodChoice& m : study_methods(kept)) {
     RunSettings run = opt.run;
     run.out_dir = dir + "/energy_" + m.argument;
@@ -169,8 +173,11 @@ void energy_study(const Options& opt, const NewtonSettings& newton, const std::s
     std::fprintf(summary.get(), "%s %.6f %.6f %.6f %lld %lld %.4f\n", m.argument.c_str(),
                  r.energy.back().energy.total() / E0, lo / E0, hi / E0, r.counters.newton_iterations,
                  r.counters.factorizations, r.wall_seconds);
+    table.add_row({m.row->title, format_fixed(r.energy.back().energy.total() / E0, 5), format_fixed(lo / E0, 5),
+                   format_fixed(hi / E0, 5)});
   }
   summary.commit();
+  write_table_fragment(dir + "/energy_summary.md", table, command);
 }
 // [energy_study]
 
@@ -188,12 +195,20 @@ Vector reference_positions(const SceneParams& p, double T, double h_ref) {
   return r.x;
 }
 
+// One run of the accuracy studies, for the page's tables.
+struct StudyRun {
+  std::string title;
+  NewtonVariant variant;
+  double h, error, seconds;
+  long long factorizations;
+};
+
 // [work_precision]
 // Each method at the steps `hs` on `p` to T: the largest position error at T against `reference`, the wall time
 // (best of `repeats`), and the work; one line per run in `path`, one gnuplot index per method and variant.
 void work_precision(const SceneParams& p, double T, const std::vector<double>& hs, const Vector& reference,
                     const NewtonSettings& newton, const std::vector<NewtonVariant>& variants, const std::string& path,
-                    int repeats, const std::vector<std::string>& only = {}) {
+                    int repeats, const std::vector<std::string>& only = {}, std::vector<StudyRun>* runs = nullptr) {
   OutputFile out(path);
   std::fprintf(out.get(), "# K = %g, D = %g, T = %g s; error = max |x - x_ref| over the free particles [m]\n"
                "# method newton h error wall_seconds newton_iterations factorizations rhs_evaluations\n",
@@ -218,6 +233,7 @@ void work_precision(const SceneParams& p, double T, const std::vector<double>& h
         }
         const double error =
             r.status == RunStatus::ok ? (r.x - reference).lpNorm<Eigen::Infinity>() : NAN;
+        if (runs) runs->push_back({m.row->title, variant, h, error, best, r.counters.factorizations});
         std::fprintf(out.get(), "%s %s %.6g %.6e %.6f %lld %lld %lld\n", m.argument.c_str(),
                      newton_variant_name(variant), h, error, best, r.counters.newton_iterations,
                      r.counters.factorizations, r.counters.rhs_evaluations);
@@ -232,10 +248,11 @@ void work_precision(const SceneParams& p, double T, const std::vector<double>& h
 
 // The chapter's studies: energy on the undamped cloth; observed orders on (200, 20) over T = 0.4 s; work against
 // precision on the stiff cloth (5000, 20). --quick keeps the plots target fast (fewer steps, one timing).
-void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, const std::string& program) {
+void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, const std::string& program,
+                 const std::string& command) {
   const std::string dir = opt.run.out_dir;
   prepare_output_dir(dir);
-  energy_study(opt, newton, dir, program);
+  energy_study(opt, newton, dir, program, command);
 
   SceneParams report = opt.scene;
   report.stiffness = 200;
@@ -246,15 +263,40 @@ void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, c
   NewtonSettings tight = newton;
   tight.tolerance = 1e-12;  // Newton's error far below the truncation error: the orders are the methods'
   // RK4 at h = 2e-5: its error (order 4) is below 1e-9 m here, far below every implicit method's.
+  std::vector<StudyRun> orders;
   work_precision(report, T, hs, reference_positions(report, T, 2e-5), tight, {NewtonVariant::modified},
-                 dir + "/orders.dat", 1);
+                 dir + "/orders.dat", 1, {}, &orders);
+  // The observed order between consecutive steps, log2(e(2h) / e(h)), for each method (runs come h-descending).
+  std::vector<std::string> header = {"(K, D) = (200, 20), T = 0.4 s"};
+  for (const double h : hs) header.push_back("error at h = " + format_number(h) + " [m]");
+  header.emplace_back("observed order");
+  MarkdownTable order_table(header, "l" + std::string(hs.size() + 1, 'r'));
+  for (std::size_t k = 0; k + hs.size() <= orders.size(); k += hs.size()) {
+    std::vector<std::string> row = {orders[k].title};
+    for (std::size_t j = 0; j < hs.size(); ++j) row.push_back(format_number(orders[k + j].error, 2));
+    const StudyRun& coarse = orders[k + hs.size() - 2];
+    const StudyRun& fine = orders[k + hs.size() - 1];
+    row.push_back(format_fixed(std::log(coarse.error / fine.error) / std::log(coarse.h / fine.h), 2));
+    order_table.add_row(row);
+  }
+  write_table_fragment(dir + "/orders.md", order_table, command);
 
   SceneParams stiff = report;
   stiff.stiffness = 5000;
   // The figure shows the L-stable methods and BDF2; the others fail at the large steps (see the page).
+  std::vector<StudyRun> stiff_runs;
   work_precision(stiff, T, hs, reference_positions(stiff, T, 2e-5), newton,
                  {NewtonVariant::full, NewtonVariant::modified}, dir + "/work_precision.dat", quick ? 1 : 3,
-                 {"implicit_euler", "sdirk2", "sdirk3", "bdf2"});
+                 {"implicit_euler", "sdirk2", "sdirk3", "bdf2"}, &stiff_runs);
+  // Full against modified Newton at the smallest step, where every method converges.
+  MarkdownTable work_table({"(K, D) = (5000, 20), T = 0.4 s, h = " + format_number(hs.back()) + " s", "Newton",
+                            "error [m]", "time [s]", "factorizations"},
+                           "llrrr");
+  for (const StudyRun& r : stiff_runs)
+    if (r.h == hs.back())
+      work_table.add_row({r.title, newton_variant_name(r.variant), format_number(r.error, 2),
+                          format_number(r.seconds, 2), std::to_string(r.factorizations)});
+  write_table_fragment(dir + "/work_precision.md", work_table, command);
 }
 
 }  // namespace
@@ -357,7 +399,7 @@ int main(int argc, char** argv) {
       throw InputError(std::string("--linear-solver / --jacobian: ") + e.what());
     }
     if (want_report_runs) {
-      report_runs(opt, choice.newton, quick, cli.program());
+      report_runs(opt, choice.newton, quick, cli.program(), reader_command(argc, argv));
       return 0;
     }
     return run_cloth(opt.scene, opt.run, choice, cli.program());

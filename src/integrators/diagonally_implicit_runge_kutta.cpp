@@ -20,7 +20,7 @@ DiagonallyImplicitRungeKutta::DiagonallyImplicitRungeKutta(ForceField& field, Im
   for (int i = 0; i < s; ++i) {
     bool used = !tableau_.stiffly_accurate() && tableau_.method.b[i] != 0.0;
     for (int j = i + 1; j < s; ++j) used = used || A(j, i) != 0.0;
-    if (tableau_.has_embedded()) used = used || tableau_.b_hat[i] != tableau_.method.b[i];
+    if (tableau_.has_embedded()) used = used || tableau_.method.b_hat[i] != tableau_.method.b[i];
     need_force_.push_back(used);
   }
 }
@@ -80,7 +80,7 @@ bool DiagonallyImplicitRungeKutta::step(double h, Vector& x, Vector& v) {
     error_x_.setZero();
     error_v_.setZero();
     for (int i = 0; i < s; ++i) {
-      const double e = t.b[i] - tableau_.b_hat[i];
+      const double e = t.b[i] - t.b_hat[i];
       if (e == 0.0) continue;
       error_x_ += (h * e) * V_[static_cast<std::size_t>(i)];
       error_v_ += (h * e / m) * F_[static_cast<std::size_t>(i)];

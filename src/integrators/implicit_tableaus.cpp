@@ -104,8 +104,8 @@ const std::vector<ImplicitTableau>& builtin_implicit_tableaus() {
     };
     // TR-BDF2's third-order companion weights: the difference of the two combinations estimates the error of
     // the second-order step (Hosea & Shampine 1996).
-    t.back().b_hat = Eigen::Vector3d((1 - w) / 3, (3 * w + 1) / 3, d / 3);
-    t.back().embedded_order = 3;
+    t.back().method.b_hat = Eigen::Vector3d((1 - w) / 3, (3 * w + 1) / 3, d / 3);
+    t.back().method.embedded_order = 3;
     return t;
   }();
   // [implicit_tableaus]
@@ -120,7 +120,7 @@ void validate(const ImplicitTableau& tableau) {
   if (t.A.rows() != s || t.A.cols() != s || t.c.size() != s)
     throw InputError(who + "A must be " + std::to_string(s) + "x" + std::to_string(s) + " to match " +
                      std::to_string(s) + " weights b");
-  if (!t.A.allFinite() || !t.b.allFinite() || !t.c.allFinite() || !tableau.b_hat.allFinite())
+  if (!t.A.allFinite() || !t.b.allFinite() || !t.c.allFinite() || !t.b_hat.allFinite())
     throw InputError(who + "has a non-finite entry");
   for (int i = 0; i < s; ++i)
     for (int j = i + 1; j < s; ++j)
@@ -142,13 +142,13 @@ void validate(const ImplicitTableau& tableau) {
   // The order conditions hold for A lower triangular or not: they are the same rooted trees (Butcher 2016).
   check_order(t, who + "claims order", "order");
   if (tableau.has_embedded()) {
-    if (tableau.b_hat.size() != s)
-      throw InputError(who + "bhat has " + std::to_string(tableau.b_hat.size()) + " weights: expected " +
+    if (t.b_hat.size() != s)
+      throw InputError(who + "bhat has " + std::to_string(t.b_hat.size()) + " weights: expected " +
                        std::to_string(s) + ", one per stage as in b");
-    if (tableau.b_hat == t.b) throw InputError(who + "bhat equals b: the pair would estimate every error as zero");
+    if (t.b_hat == t.b) throw InputError(who + "bhat equals b: the pair would estimate every error as zero");
     ButcherTableau embedded = t;
-    embedded.b = tableau.b_hat;
-    embedded.order = tableau.embedded_order;
+    embedded.b = t.b_hat;
+    embedded.order = t.embedded_order;
     check_order(embedded, who + "the embedded weights bhat claim order", "embedded_order");
   }
 }
@@ -160,55 +160,9 @@ const ImplicitTableau& builtin_implicit_tableau(const std::string& name) {
 }
 
 ImplicitTableau parse_implicit_tableau(const std::string& text, const std::string& source) {
-  // The embedded pair's two lines are taken out first (left blank, so that line numbers stay those of the file);
-  // the rest is Chapter 3's format.
-  std::istringstream in(text);
-  std::string line, rest;
-  std::vector<double> b_hat;
-  int b_hat_line = 0, order_line = 0, line_no = 0;
-  int embedded_order = 0;
-  const auto fail = [&](const std::string& what) {
-    throw InputError(escaped(source) + ":" + std::to_string(line_no) + ": " + what);
-  };
-  while (std::getline(in, line)) {
-    ++line_no;
-    std::string content = line.substr(0, line.find('#'));
-    std::istringstream words(content);
-    std::string first;
-    words >> first;
-    if (first == "bhat") {
-      if (b_hat_line != 0) fail("a second 'bhat' row (the first is on line " + std::to_string(b_hat_line) + ")");
-      b_hat_line = line_no;
-      std::string token;
-      while (words >> token) {
-        double value = 0;
-        if (!parse_tableau_entry(token, value)) fail("'" + token + "' is not a number (write decimals or fractions p/q)");
-        b_hat.push_back(value);
-      }
-      if (b_hat.empty()) fail("the 'bhat' row has no weight");
-      line.clear();
-    } else if (first == "embedded_order") {
-      if (order_line != 0)
-        fail("'embedded_order' given twice (first on line " + std::to_string(order_line) + "): expected one");
-      order_line = line_no;
-      std::string o, extra;
-      if (!(words >> o) || o.size() != 1 || o[0] < '1' || o[0] > '4' || (words >> extra))
-        fail("'embedded_order' needs a whole number from 1 to 4");
-      embedded_order = o[0] - '0';
-      line.clear();
-    }
-    rest += line + "\n";
-  }
-  if ((b_hat_line != 0) != (order_line != 0))
-    throw InputError(escaped(source) + (b_hat_line != 0 ? ": a 'bhat' row needs an 'embedded_order q' line (the order of bhat)"
-                                                        : ": an 'embedded_order' line needs a 'bhat' row"));
   ImplicitTableau t;
-  t.method = parse_tableau_entries(rest, source);
+  t.method = parse_tableau_entries(text, source);  // Chapter 3's format, with Chapter 8's 'bhat' and 'embedded_order'
   t.source = source;
-  if (b_hat_line != 0) {
-    t.b_hat = Eigen::Map<const Eigen::VectorXd>(b_hat.data(), static_cast<Eigen::Index>(b_hat.size()));
-    t.embedded_order = embedded_order;
-  }
   try {
     validate(t);
   } catch (const InputError& e) {

@@ -10,15 +10,14 @@
 
 namespace cloth {
 
-/// A diagonally implicit Runge-Kutta method: its tableau, and for an embedded pair the second weights b^ whose
-/// combination of the same stages has another order, so that their difference estimates the local error.
+/// A diagonally implicit Runge-Kutta method: its tableau (for an embedded pair with the second weights b^ of
+/// ButcherTableau, whose combination of the same stages has another order, so that the difference of the two
+/// estimates the local error), and where its coefficients come from.
 struct ImplicitTableau {
-  ButcherTableau method;      ///< A lower triangular, diagonal free
-  Eigen::VectorXd b_hat;      ///< embedded weights; empty when the method has none
-  int embedded_order = 0;     ///< the order of b^ (0 without one)
+  ButcherTableau method;      ///< A lower triangular, diagonal free; b_hat and embedded_order for a pair
   std::string source;         ///< where the coefficients come from (author, year)
 
-  [[nodiscard]] bool has_embedded() const { return b_hat.size() > 0; }
+  [[nodiscard]] bool has_embedded() const { return method.has_embedded(); }
   /// b^T is A's last row: the step's result is the last stage's value (no weights applied), which keeps the
   /// stiff decay of the last stage (Hairer & Wanner 1996, IV.6).
   [[nodiscard]] bool stiffly_accurate() const;
