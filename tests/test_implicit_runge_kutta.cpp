@@ -77,20 +77,25 @@ NewtonSettings tight() {
 
 }  // namespace
 
-TEST_CASE("implicit_euler on the stage machinery reproduces Chapter 4's recorded implicit Euler to 1e-12") {
+TEST_CASE("implicit_euler on the stage machinery reproduces Chapter 4's recorded implicit Euler") {
   struct Case {
     const char* file;
     double K, D;
     LinearSolverKind solver;
     StiffnessTreatment treatment;
     int max_iterations;
+    double tolerance;
   };
+  // With direct solves Newton converges quadratically far below its tolerance, so the states agree to rounding,
+  // whatever its first guess. CG's solves are inexact (relative residual 1e-10), and the stage predictor starts
+  // Newton elsewhere than Chapter 4 did: the iterations end at another point within Newton's tolerance,
+  // 1e-8 (1 + |V|_inf) with |V| about 20 m/s.
   const Case cases[] = {
-      {"K200_D20_full_ldu.dat", 200, 20, LinearSolverKind::ldu, StiffnessTreatment::exact, 20},
-      {"K200_D20_full_cg.dat", 200, 20, LinearSolverKind::cg, StiffnessTreatment::definite, 20},
-      {"K200_D20_one_ldu.dat", 200, 20, LinearSolverKind::automatic, StiffnessTreatment::exact, 1},
-      {"K50_D0_full_ldlt.dat", 50, 0, LinearSolverKind::automatic, StiffnessTreatment::exact, 20},
-      {"K50_D0_one_ldlt.dat", 50, 0, LinearSolverKind::automatic, StiffnessTreatment::exact, 1},
+      {"K200_D20_full_ldu.dat", 200, 20, LinearSolverKind::ldu, StiffnessTreatment::exact, 20, 1e-12},
+      {"K200_D20_full_cg.dat", 200, 20, LinearSolverKind::cg, StiffnessTreatment::definite, 20, 2e-7},
+      {"K200_D20_one_ldu.dat", 200, 20, LinearSolverKind::automatic, StiffnessTreatment::exact, 1, 1e-12},
+      {"K50_D0_full_ldlt.dat", 50, 0, LinearSolverKind::automatic, StiffnessTreatment::exact, 20, 1e-12},
+      {"K50_D0_one_ldlt.dat", 50, 0, LinearSolverKind::automatic, StiffnessTreatment::exact, 1, 1e-12},
   };
   for (const Case& c : cases) {
     SceneParams p;
@@ -108,8 +113,8 @@ TEST_CASE("implicit_euler on the stage machinery reproduces Chapter 4's recorded
     run.t_end = 0.3;
     const RunResult result = simulate(stepper, run, false);
     REQUIRE(result.status == RunStatus::ok);
-    INFO(c.file);
-    CHECK(difference_from_recorded(scene, result.x, result.v, c.file) <= 1e-12);
+    INFO(std::string(c.file));
+    CHECK(difference_from_recorded(scene, result.x, result.v, c.file) <= c.tolerance);
   }
 }
 

@@ -38,7 +38,7 @@ plot data.'/orders.dat' index 0 using 3:4 with linespoints lw 2 pt 7 lc rgb "#d6
 set output plots.'/ch09_work_precision.png'
 set title "Stiff cloth (K, D) = (5000, 20), T = 0.4 s: full Newton (solid), modified (dashed)"
 set xlabel "max |x - x_{ref}| [m]"
-set ylabel "wall time [s]"
+set ylabel "processor time [s]"
 set key top right
 plot data.'/work_precision.dat' index 0 using 4:5 with linespoints lw 2 pt 7 lc rgb "#d62728" title "implicit Euler", \
      data.'/work_precision.dat' index 1 using 4:5 with linespoints lw 2 pt 9 lc rgb "#2ca02c" title "SDIRK2", \

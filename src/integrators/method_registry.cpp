@@ -198,10 +198,8 @@ std::unique_ptr<NewtonStepper> make_newton_stepper(const std::string& name, Forc
     if (m->name == name) {
       std::unique_ptr<Stepper> stepper = m->stepper(field, settings);
       // Every such row's factory makes a NewtonStepper (the registry's test checks it), so this never fails.
-      if (auto* newton = dynamic_cast<NewtonStepper*>(stepper.get())) {
-        stepper.release();
-        return std::unique_ptr<NewtonStepper>(newton);
-      }
+      if (dynamic_cast<NewtonStepper*>(stepper.get()) != nullptr)
+        return std::unique_ptr<NewtonStepper>(static_cast<NewtonStepper*>(stepper.release()));
     }
     names += (names.empty() ? "" : ", ") + m->name;
   }
