@@ -272,7 +272,9 @@ void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, c
   std::vector<std::string> header = {"(K, D) = (200, 20), T = 0.4 s"};
   for (const double h : hs) header.push_back(std::string("error at h = ") + format_number(h) + " [m]");
   header.emplace_back("observed order");
-  MarkdownTable order_table(header, "l" + std::string(hs.size() + 1, 'r'));
+  std::string alignment(header.size(), 'r');  // the method's name left, the numbers right
+  alignment[0] = 'l';
+  MarkdownTable order_table(header, alignment);
   for (std::size_t k = 0; k + hs.size() <= orders.size(); k += hs.size()) {
     std::vector<std::string> row = {orders[k].title};
     for (std::size_t j = 0; j < hs.size(); ++j) row.push_back(format_number(orders[k + j].error, 2));
