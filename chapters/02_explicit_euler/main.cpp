@@ -1,6 +1,7 @@
 // Chapter 2: explicit Euler on the report's cloth, symplectic Euler beside it, and the measurement of explicit
 // Euler's energy growth factor (1 + (h omega)^2) per step on an undamped spring.
 #include "program/command_line.hpp"
+#include "program/fragment.hpp"
 #include "analysis/fastest_modes.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
@@ -82,16 +83,31 @@ std::string report_folder(const std::string& method, const ReportCase& c) { retu
 std::vector<std::string> outputs_of(bool single_spring, bool report_runs) {
   if (single_spring) return {"single_spring.dat"};
   if (!report_runs) return run_output_names();
-  std::vector<std::string> names = {"single_spring.dat"};
+  std::vector<std::string> names = {"single_spring.dat", "report_runs.md"};
   for (const std::string& m : chapter_methods)
     for (const ReportCase& c : report_cases)
       for (const std::string& file : run_output_names()) names.push_back(report_folder(m, c) + "/" + file);
   return names;
 }
 
-// One run of the report scene with `method`, outputs in `dir`; returns report()'s exit status.
+// How a run of the report scene ended, as a cell of the page's table: "finishes; E(2 s) = 2.41e+07 J, 304 times
+// E(0)" or "diverges at step 90, t = 0.9 s".
+std::string outcome_cell(const RunResult& r) {
+  if (r.status != RunStatus::ok)
+    return std::string(r.status == RunStatus::diverged ? "diverges" : run_status_name(r.status)) + " at step " +
+           std::to_string(r.failed_step) + ", t = " + format_number(r.failed_t, 3) + " s";
+  const double e0 = r.energy.front().energy.total(), e1 = r.energy.back().energy.total();
+  const double ratio = e1 / e0;
+  const std::string energy = std::abs(e1) < 1e6 ? std::to_string(std::lround(e1)) : format_number(e1, 3);
+  const std::string change = std::abs(ratio - 1) >= 0.1 ? format_number(ratio, 3) + " times E(0)"
+                             : format_number(100 * std::abs(ratio - 1), 2) + (ratio > 1 ? "% above E(0)" : "% below E(0)");
+  return "finishes; E(" + format_number(r.t, 3) + " s) = " + energy + " J, " + change;
+}
+
+// One run of the report scene with `method`, outputs in `dir`; returns report()'s exit status, and how the run
+// ended in `outcome` when it is given.
 int run_cloth(const SceneParams& params, RunSettings run, const std::string& method, const std::string& dir,
-              const std::string& program) {
+              const std::string& program, std::string* outcome = nullptr) {
   const Scene scene(params);
   ForceField field(scene);
   auto stepper = make_stepper(method, field);
@@ -102,6 +118,7 @@ int run_cloth(const SceneParams& params, RunSettings run, const std::string& met
   run.progress = terminal_progress(program);
   const RunResult result = simulate(*stepper, run);
   const double hc_end = run.dt * fastest_damping_rate(field, result.x, result.v);
+  if (outcome != nullptr) *outcome = outcome_cell(result);
   std::printf("%s: K = %g, D = %g: fastest mode at rest omega_max = %.4g rad/s, h omega_max = %.4g, explicit Euler "
               "multiplies its energy by %.4g per step\n", program.c_str(), params.stiffness, params.damping, omega_max,
               hw, 1 + hw * hw);
@@ -151,14 +168,25 @@ int main(int argc, char** argv) {
     }
     if (!report_runs) return run_cloth(opt.scene, opt.run, method, opt.run.out_dir, cli.program());
 
-    for (const std::string& m : chapter_methods)
+    // The page's table: one row per method, one column per report case.
+    std::vector<std::string> header = {"method"};
+    for (const ReportCase& c : report_cases) header.push_back("K = " + format_number(c.K) + ", D = " + format_number(c.D));
+    MarkdownTable table(header);
+    for (const std::string& m : chapter_methods) {
+      std::vector<std::string> row = {find_method(m).title};
       for (const ReportCase& c : report_cases) {
         const SceneParams p = with_case(opt.scene, c);
+        std::string outcome;
         // A divergence is a result here; an interruption ends the program (the interrupted run said so).
-        if (const int status = run_cloth(p, opt.run, m, opt.run.out_dir + "/" + report_folder(m, c), cli.program());
+        if (const int status =
+                run_cloth(p, opt.run, m, opt.run.out_dir + "/" + report_folder(m, c), cli.program(), &outcome);
             status >= 128)
           return status;
+        row.push_back(outcome);
       }
+      table.add_row(row);
+    }
+    write_table_fragment(opt.run.out_dir + "/report_runs.md", table, reader_command(argc, argv));
     measure_single_spring(single_spring_params(200, 0), opt.run, opt.run.out_dir);
     return 0;
   });

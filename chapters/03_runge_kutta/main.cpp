@@ -75,7 +75,6 @@ std::string tableau_names() {
   return names;
 }
 
-// [observed_order]
 // Error at t = 1 s of every built-in tableau on the damped single spring (K = 50, D = 2, m = 1), against the
 // closed form, for h = 0.1 / 2^k; writes order.dat (h, then one error column per tableau). The error is the
 // largest deviation of a free particle's displacement or velocity (divided by omega) from the closed form.
@@ -95,6 +94,8 @@ void measure_orders(const std::string& dir) {
     const double h = 0.1 / std::pow(2.0, k);
     std::fprintf(out, "%.10g", h);
     for (const Method* m : tableaus) {
+      // [observed_order]
+      // One tableau at one step h: run to T, then the largest deviation from the closed form.
       ExplicitRungeKutta stepper(field, *m->tableau);
       Vector x, v;
       single_spring_initial_state(scene, s0, x, v);
@@ -104,13 +105,13 @@ void measure_orders(const std::string& dir) {
       double error = 0;
       for (Eigen::Index i = 1; i < x.size(); i += 3)
         error = std::max({error, std::abs(x[i] - rest[i] - exact.s), std::abs(v[i] - exact.ds) / omega});
+      // [observed_order]
       std::fprintf(out, " %.6e", error);
     }
     std::fprintf(out, "\n");
   }
   file.commit();
 }
-// [observed_order]
 
 }  // namespace
 

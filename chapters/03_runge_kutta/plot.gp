@@ -11,17 +11,17 @@ set output plots.'/ch03_energy.png'
 set title "RK4 on the 20 x 20 cloth, h = 0.01 s: total energy"
 set ylabel "total energy E [J]"
 plot data.'/rk4_K50_D0/energy.dat'   using 1:5 with lines lw 2 lc rgb "#1f77b4" title "K = 50, D = 0", \
-     data.'/rk4_K200_D0/energy.dat'  using 1:5 with lines lw 2 lc rgb "#d62728" title "K = 200, D = 0", \
-     data.'/rk4_K200_D20/energy.dat' using 1:5 with lines lw 2 lc rgb "#2ca02c" title "K = 200, D = 20", \
-     79200 with lines dt 2 lc rgb "black" title "E(0) = 79200 J"
+     data.'/rk4_K200_D0/energy.dat'  using 1:5 with lines lw 2 dt 2 lc rgb "#d62728" title "K = 200, D = 0", \
+     data.'/rk4_K200_D20/energy.dat' using 1:5 with lines lw 2 dt 4 lc rgb "#2ca02c" title "K = 200, D = 20", \
+     79200 with lines dt 3 lc rgb "black" title "E(0) = 79200 J"
 
 set output plots.'/ch03_lowest_point.png'
 set title "RK4 on the 20 x 20 cloth, h = 0.01 s: the lowest particle"
 set ylabel "lowest z of the cloth [m]"
 set key bottom right
 plot data.'/rk4_K50_D0/lowest_point.dat'   using 1:2 with lines lw 2 lc rgb "#1f77b4" title "K = 50, D = 0", \
-     data.'/rk4_K200_D0/lowest_point.dat'  using 1:2 with lines lw 2 lc rgb "#d62728" title "K = 200, D = 0", \
-     data.'/rk4_K200_D20/lowest_point.dat' using 1:2 with lines lw 2 lc rgb "#2ca02c" title "K = 200, D = 20"
+     data.'/rk4_K200_D0/lowest_point.dat'  using 1:2 with lines lw 2 dt 2 lc rgb "#d62728" title "K = 200, D = 0", \
+     data.'/rk4_K200_D20/lowest_point.dat' using 1:2 with lines lw 2 dt 4 lc rgb "#2ca02c" title "K = 200, D = 20"
 
 set output plots.'/ch03_order.png'
 set title "Observed order on the damped single spring (K = 50, D = 2, m = 1), error at t = 1 s"
@@ -32,14 +32,16 @@ set format x "10^{%T}"
 set format y "10^{%T}"
 set xrange [8e-5:0.06]
 set yrange [1e-17:1e-1]
-set key top left
-plot data.'/order.dat' using 1:2 with linespoints lw 2 pt 7 lc rgb "#1f77b4" title "euler", \
-     '' using 1:3 with linespoints lw 2 pt 5 lc rgb "#2ca02c" title "heun", \
-     '' using 1:4 with points pt 4 ps 2 lc rgb "#2ca02c" title "midpoint (same R(z) as heun)", \
-     '' using 1:5 with linespoints lw 2 pt 9 lc rgb "#ff7f0e" title "kutta3", \
-     '' using 1:6 with linespoints lw 2 pt 11 lc rgb "#d62728" title "rk4", \
-     '' using 1:7 with points pt 6 ps 2 lc rgb "#d62728" title "rule38 (same R(z) as rk4)", \
-     0.08*x with lines dt 2 lc rgb "gray" title "slopes 1, 2, 3, 4", \
-     0.08*x**2 with lines dt 2 lc rgb "gray" notitle, \
-     0.2*x**3 with lines dt 2 lc rgb "gray" notitle, \
-     0.3*x**4 with lines dt 2 lc rgb "gray" notitle
+# The lower right corner is empty (no method is that accurate at large h): the key goes there.
+set key bottom right box opaque font ",11" spacing 1.1
+# Point types and dash patterns differ as well as colours, so the figure reads in greyscale.
+plot data.'/order.dat' using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "explicit Euler", \
+     '' using 1:3 with linespoints lw 2 dt 2 pt 5 lc rgb "#2ca02c" title "Heun", \
+     '' using 1:4 with points pt 4 ps 2 lc rgb "#2ca02c" title "midpoint (same R(z) as Heun)", \
+     '' using 1:5 with linespoints lw 2 dt 4 pt 9 lc rgb "#ff7f0e" title "Kutta's third order", \
+     '' using 1:6 with linespoints lw 2 dt 1 pt 11 lc rgb "#d62728" title "RK4", \
+     '' using 1:7 with points pt 6 ps 2 lc rgb "#d62728" title "3/8 rule (same R(z) as RK4)", \
+     0.08*x with lines dt 3 lc rgb "gray" title "slopes 1, 2, 3, 4", \
+     0.08*x**2 with lines dt 3 lc rgb "gray" notitle, \
+     0.2*x**3 with lines dt 3 lc rgb "gray" notitle, \
+     0.3*x**4 with lines dt 3 lc rgb "gray" notitle

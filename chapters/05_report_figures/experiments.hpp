@@ -50,6 +50,7 @@ struct Settings {
   int threads = 2;
   bool sweep = true;
   double sweep_t_end_implicit = 0;  ///< T of implicit Euler's sweep runs
+  std::string command;              ///< the reader's command line, for the page's fragment (cloth::reader_command)
 };
 
 /// Runs every run on `settings.threads` threads: first the figures' runs, run (m, c) at index
@@ -65,7 +66,7 @@ std::string run_name(const Run& run);
 
 /// What the figures and tables say of a run's energy, relative to E(0).
 struct EnergyMeasures {
-  double gain = 0, final_change = 0;
+  double gain = 0, final_change = 0, peak = 1;
 };
 EnergyMeasures energy_measures(const std::vector<cloth::EnergySample>& energy);
 

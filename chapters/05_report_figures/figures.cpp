@@ -6,6 +6,7 @@
 
 #include "base/format_number.hpp"
 #include "integrators/method_registry.hpp"
+#include "program/fragment.hpp"
 #include "program/output.hpp"
 
 #include <algorithm>
@@ -23,6 +24,9 @@ bool diverged(const RunResult& r) { return r.status != RunStatus::ok; }
 // "diverged at t = 0.9 s", "newton not converged at t = 1.41 s": how a run ended and when.
 std::string ended(const RunResult& r, double h) { return outcome(r) + " at t = " + format_number(stop_time(r, h), 3) + " s"; }
 
+// The method's title from the registry ("explicit Euler").
+std::string title_of(const std::string& method) { return find_method(method).title; }
+
 // A string column of a gnuplot data file: quoted, so that it may hold spaces.
 std::string quoted(const std::string& text) { return '"' + text + '"'; }
 
@@ -38,7 +42,7 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
   std::fprintf(summary.get(),
                "# method K D status t_stopped[s] energy_gain energy_final_change sag_T[m] min_z_run[m] "
                "max_strain_T newton_per_step wall[s]\n"
-               "# status: ok, diverged, or the kind of the step that failed; energy_gain = max_t (E(t)-E(0))/|E(0)|, "
+               "# status: ok, diverged, or the kind of the step that failed; energy_gain = max over s <= t of (E(t)-E(s))/|E(0)|, "
                "energy_final_change = (E(T)-E(0))/|E(0)|, over the sane part of a stopped run; sag_T = lowest z of "
                "the last sane state\n");
   OutputFile table(dir + "runs.dat");
@@ -50,6 +54,9 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
     for (const double f : sheet_fractions) list += (list.empty() ? "" : ", ") + format_number(f);
     return list;
   }().c_str());
+  // The page's table (summary.md): the same rows, as a reader reads them.
+  MarkdownTable page_table({"method", "K", "D", "outcome", "energy gain", "E(T)/E(0) - 1", "lowest z over the run [m]"},
+                           "lrrlrrr");
   std::printf("\n%-17s %5s %4s  %-9s %8s %11s %11s %8s %8s %10s\n", "method", "K", "D", "status", "t_stop", "E gain",
               "E(T)/E0-1", "sag_T", "min z", "max strain");
   for (std::size_t r = 0; r < figure_runs; ++r) {
@@ -70,6 +77,11 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
     std::printf("%-17s %5g %4g  %-9s %8.4g %11.4g %11.4g %8.4g %8.4g %10.4g\n", run.method.c_str(), run.K, run.D,
                 status.c_str(), stop_time(res, h), e.gain, e.final_change, lowest_z(scene, last), min_z,
                 max_abs_strain(scene, last));
+
+    const bool bounded = !diverged(res);
+    page_table.add_row({title_of(run.method), format_number(run.K), format_number(run.D),
+                        bounded ? outcome(res) : ended(res, h), bounded ? format_number(e.gain, 3) : "",
+                        bounded ? format_number(e.final_change, 3) : "", bounded ? format_number(min_z, 3) : ""});
 
     // Energy and sag against time, one line per step.
     OutputFile series(dir + "series_" + name + ".dat");
@@ -98,7 +110,7 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
     mesh.commit();
 
     const std::string title = find_method(run.method).title;
-    const std::string ending = diverged(res) ? ended(res, h) : "bounded, max E/E(0) = " + format_number(1 + e.gain, 3);
+    const std::string ending = diverged(res) ? ended(res, h) : "bounded, max E/E(0) = " + format_number(e.peak, 3);
     std::fprintf(table.get(), "%zu %s %s %s %d %s", r + 1, name.c_str(), quoted(title).c_str(), quoted(ending).c_str(),
                  blocks, format_number(res.t, 4).c_str());
     for (int a = 0; a < 3; ++a)
@@ -116,6 +128,7 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
   }
   summary.commit();
   table.commit();
+  write_table_fragment(dir + "summary.md", page_table, settings.command);
   instants.commit();
 
   // Per case: a log energy axis when some method's energy grew tenfold, and a sag range that shows the bounded

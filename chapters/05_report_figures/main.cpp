@@ -6,6 +6,7 @@
 
 #include "base/input_error.hpp"
 #include "program/command_line.hpp"
+#include "program/fragment.hpp"
 
 using namespace cloth;
 
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
 
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
+    settings.command = reader_command(argc, argv);
     if (settings.sweep_t_end_implicit > opt.run.t_end) throw InputError("--sweep-t-end-implicit: must not exceed --t-end");
     if (settings.sweep_t_end_implicit == 0) settings.sweep_t_end_implicit = opt.run.t_end;
     prepare_output_dir(opt.run.out_dir);

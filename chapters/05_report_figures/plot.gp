@@ -51,9 +51,11 @@ set cbrange [sc(-1):sc(100)]
 set cbtics ("-1" sc(-1), "-0.1" sc(-0.1), "0" 0, "0.1" sc(0.1), "1" sc(1), "10" sc(10), "100" sc(100))
 set cblabel "strain (l - L_0)/L_0"
 
-# Draws block b of run r's mesh; the spring colour is column 4.
+# Draws block b of run r's mesh; the spring colour is column 4. x and y share one scale; z, which spans up to
+# 25 m under a 1.9 m sheet, gets its own (each title says so; read depths from the z tics).
 set xyplane at 0
 set view 62, 32
+set view equal xy
 set ticslevel 0
 set xlabel "x [m]" offset 0,-0.5
 set ylabel "y [m]" offset 0,-0.5
@@ -70,7 +72,7 @@ do for [f = 1:nfigures] {
   r = fig_run[f]
   eval set_xy_tics(r)
   set output sprintf("%s/ch05_figure%d.png", plots, fig_number[f])
-  set multiplot layout 2,2 title sprintf("%s\n{/*0.85 %s, h = %g s: structural springs coloured by strain (%s)}", \
+  set multiplot layout 2,2 title sprintf("%s\n{/*0.85 %s, h = %g s: structural springs coloured by strain (%s)}\n{/*0.85 x and y drawn to scale, z to its own: read depths from its tics [m]}", \
       fig_caption[f], run_method[r], h, run_status[r]) font ",14"
   do for [i = 1:ninstants] {
     k = (r - 1) * ninstants + i
@@ -83,7 +85,7 @@ do for [f = 1:nfigures] {
 # ---- overview: methods in rows, configurations in columns, the cloth at t = T/2 ----
 set terminal pngcairo size 1500,1700 enhanced font "Sans,10"
 set output plots.'/ch05_overview.png'
-set multiplot layout nmethods, nconfigs title sprintf("All methods at t = %g s, h = %g s (rows: methods; columns: K [N/m], D [N s/m]); springs coloured by strain", t_end / 2, h) font ",14"
+set multiplot layout nmethods, nconfigs title sprintf("All methods at t = %g s, h = %g s (rows: methods; columns: K [N/m], D [N s/m]); springs coloured by strain; x, y to scale, z to its own scale", t_end / 2, h) font ",14"
 unset colorbox
 do for [m = 1:nmethods] {
   do for [c = 1:nconfigs] {
@@ -183,7 +185,7 @@ set palette defined (-8 "#f7fbff", -6 "#c6dbef", -4 "#6baed6", -2 "#fdae6b", 0 "
 
 set terminal pngcairo size 1400,900 enhanced font "Sans,11"
 set output plots.'/ch05_sweep_gain.png'
-set multiplot layout 2,2 title sprintf("Energy gain max_t (E(t) - E(0))/|E(0)| over the K x D sweep, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 The exact solution never gains energy (it conserves it for D = 0 and loses it for D > 0): any gain is the method's error. Grey: the run diverged or a step failed.}", h, t_end, sweep_t_end_implicit) font ",12"
+set multiplot layout 2,2 title sprintf("Energy gain max_{s <= t} (E(t) - E(s))/|E(0)| over the K x D sweep, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 The exact solution's energy never rises (constant for D = 0, falling for D > 0): any rise is the method's error. Grey: the run diverged or a step failed.}", h, t_end, sweep_t_end_implicit) font ",12"
 set cbrange [-8:2]
 set cbtics ("≤1e-8" -8, "1e-6" -6, "1e-4" -4, "0.01" -2, "1" 0, "100" 2)
 unset cblabel

@@ -19,7 +19,7 @@ void write_sweep(const std::vector<Run>& runs, const Options& opt) {
                "# method_index(0 explicit_euler,1 symplectic_euler,2 rk4,3 implicit_euler) K_index D_index K D "
                "status(0 bounded,1 diverged,2 step failed) t_stopped[s] energy_gain energy_final_change sag_T[m] "
                "t_end[s] newton_per_step outcome\n"
-               "# energy_gain = max_t (E(t)-E(0))/|E(0)| (>= 0; 0 for a method that never adds energy), "
+               "# energy_gain = max over s <= t of (E(t)-E(s))/|E(0)| (>= 0; 0 for a method that never adds energy), "
                "energy_final_change = (E(T)-E(0))/|E(0)|; NaN for a stopped run; outcome: bounded, diverged, or the "
                "kind of the failed step\n");
   const double nan = std::nan("");

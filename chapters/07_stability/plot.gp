@@ -35,33 +35,38 @@ set title "Stability regions |R(z)| <= 1, R computed from each Butcher tableau"
 set xrange [-4:2.5]
 set yrange [-3.5:3.5]
 plot $Ceuler w l lw 2 lc rgb "#d62728" t "explicit Euler (inside)", \
-     $Cheun w l lw 2 lc rgb "#ff7f0e" t "heun = midpoint (inside)", \
-     $Ckutta3 w l lw 2 lc rgb "#9467bd" t "kutta3 (inside)", \
-     $Crk4 w l lw 2 lc rgb "#1f77b4" t "rk4 = rule38 (inside)", \
-     $Cimplicit w l lw 2 dt 2 lc rgb "black" t "implicit Euler (stable OUTSIDE the circle)", \
-     $Csymplectic w l lw 2 lc rgb "#2ca02c" t "symplectic Euler, conjugate-pair modes (inside)"
+     $Cheun w l lw 2 dt 5 lc rgb "#ff7f0e" t "Heun = midpoint (inside)", \
+     $Ckutta3 w l lw 2 dt 6 lc rgb "#9467bd" t "Kutta's third order (inside)", \
+     $Crk4 w l lw 2 dt 2 lc rgb "#1f77b4" t "RK4 = 3/8 rule (inside)", \
+     $Cimplicit w l lw 2 dt 3 lc rgb "black" t "implicit Euler (stable OUTSIDE the circle)", \
+     $Csymplectic w l lw 2 dt 4 lc rgb "#2ca02c" t "symplectic Euler, conjugate-pair modes (inside)"
 
 set output plots.'/ch07_spectrum.png'
 set terminal pngcairo size 1200,600 enhanced font "Sans,11"
 set size noratio
 set multiplot layout 1,3 title "h{/Symbol l} of the linearised cloth, h = 0.01 s, over the stability regions (K in N/m, D in N s/m)"
-set key outside bottom center horizontal maxrows 4 font ",10"
+# One key for the three panels, below them; every panel keeps the same margins so that they line up.
+set bmargin at screen 0.26
+set tmargin at screen 0.88
 # The region boundaries are drawn thin and half transparent, and the eigenvalues over them: undamped, every
-# eigenvalue lies on the imaginary axis, which is also part of symplectic Euler's boundary. Rest-state
-# eigenvalues are large open circles, sagged ones small filled dots, so that both show where they coincide.
+# eigenvalue lies on the imaginary axis, which is also part of symplectic Euler's boundary. Sagged eigenvalues
+# are small filled dots drawn over the rest-state ones, large open circles, so that both show where they coincide.
 do for [c in "K50_D0 K200_D0 K200_D20"] {
   if (c eq "K200_D20") { set xrange [-3:0.3]; set yrange [-1.7:1.7] } else { set xrange [-0.12:0.12]; set yrange [-0.6:0.6] }
+  if (c eq "K50_D0") { set key at screen 0.5, 0.09 center center horizontal maxrows 2 font ",10" box opaque width 2 } else { unset key }
   K = (c eq "K50_D0") ? "50" : "200"
   D = (c eq "K200_D20") ? "20" : "0"
   set title "K = ".K.", D = ".D
   plot $Ceuler w l lw 1.5 lc rgb "#60d62728" t "explicit Euler", \
-       $Crk4 w l lw 1.5 lc rgb "#601f77b4" t "rk4", \
-       $Csymplectic w l lw 1.5 lc rgb "#602ca02c" t "symplectic Euler", \
-       $Cimplicit w l lw 1.5 dt 2 lc rgb "#60000000" t "implicit Euler boundary", \
+       $Crk4 w l lw 1.5 dt 2 lc rgb "#601f77b4" t "RK4", \
+       $Csymplectic w l lw 1.5 dt 4 lc rgb "#602ca02c" t "symplectic Euler", \
+       $Cimplicit w l lw 1.5 dt 3 lc rgb "#60000000" t "implicit Euler boundary", \
        data.'/spectrum_rest_'.c.'.dat' u 1:2 w p pt 6 ps 1.3 lw 1.5 lc rgb "#444444" t "h{/Symbol l}, rest state", \
        data.'/spectrum_sagged_'.c.'.dat' u 1:2 w p pt 7 ps 0.6 lc rgb "#c51b7d" t "h{/Symbol l}, sagged equilibrium"
 }
 unset multiplot
+set bmargin
+set tmargin
 
 set output plots.'/ch07_hmax.png'
 set terminal pngcairo size 1200,760 enhanced font "Sans,11"
@@ -80,7 +85,7 @@ M = data.'/measured.dat'
 sel(m, d) = (strcol(3) eq m && $2 == d)
 mid(lo, hi) = (lo > 0 && hi > 0) ? sqrt(lo * hi) : (lo > 0 ? lo : 1/0)
 array meth[4] = ["explicit_euler", "symplectic_euler", "heun", "rk4"]
-array label[4] = ["explicit Euler", "symplectic Euler", "heun", "rk4"]
+array label[4] = ["explicit Euler", "symplectic Euler", "Heun", "RK4"]
 array col[4] = ["#d62728", "#2ca02c", "#ff7f0e", "#1f77b4"]
 set multiplot layout 1,2 title "h_{max}: predicted (lines: rest state; squares: six largest sagged eigenvalues) and measured over 2 s (points, bracket)"
 do for [Dv in "0 20"] {
