@@ -4,7 +4,7 @@
 // rejected step leaves the state as it was.
 #include "base/input_error.hpp"
 #include "integrators/adaptive_simulate.hpp"
-#include "integrators/embedded_tableaus.hpp"
+#include "integrators/method_registry.hpp"
 #include "integrators/order_conditions.hpp"
 #include "model/single_spring.hpp"
 
@@ -74,7 +74,8 @@ TEST_CASE("rooted trees: 1, 1, 2, 4, 9, 20, 48, 115 of orders 1 to 8, with Butch
 }
 
 TEST_CASE("every built-in pair satisfies the conditions of both rows exactly to its claimed orders, and no more") {
-  for (const ButcherTableau& t : embedded_tableaus()) {
+  for (const Method* row : methods_of(MethodFamily::embedded_runge_kutta)) {
+    const ButcherTableau& t = *row->tableau;
     INFO(t.name);
     CHECK_NOTHROW(validate(t));
     for (int p = 1; p <= t.order; ++p) CHECK(order_condition_defect(t, p) < 1e-13);
@@ -108,7 +109,8 @@ TEST_CASE("the paper's Dormand-Prince table in chapters/08_adaptive_step/dopri5.
 }
 
 TEST_CASE("observed orders of both rows of every pair on the closed-form oscillator") {
-  for (const ButcherTableau& t : embedded_tableaus()) {
+  for (const Method* row : methods_of(MethodFamily::embedded_runge_kutta)) {
+    const ButcherTableau& t = *row->tableau;
     for (const bool embedded : {false, true}) {
       const int p = embedded ? t.embedded_order : t.order;
       INFO(t.name << (embedded ? " b-hat" : " b") << ", order " << p);
@@ -123,7 +125,8 @@ TEST_CASE("observed orders of both rows of every pair on the closed-form oscilla
 TEST_CASE("the estimate is the true local error of the lower-order row") {
   const Scene scene(single_spring_params(K, D));
   ForceField field(scene);
-  for (const ButcherTableau& t : embedded_tableaus()) {
+  for (const Method* row : methods_of(MethodFamily::embedded_runge_kutta)) {
+    const ButcherTableau& t = *row->tableau;
     INFO(t.name);
     EmbeddedRungeKutta rk(field, t);
     Vector x, v;

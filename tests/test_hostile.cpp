@@ -78,6 +78,8 @@ void write_inputs(const fs::path& dir) {
   write("dup_order.tableau", "order 4\n" + std::string(rk4_rows) + "order 4\n");
   write("low_order.tableau", "order 2\n" + std::string(rk4_rows));
   write("high_order.tableau", "order 3\n0 0 0\n1 1 0\nb 1/2 1/2\n");
+  write("no_bhat.tableau", "order 4\n" + std::string(rk4_rows));
+  write("bhat_wrong.tableau", "order 2\nembedded_order 1\n0 0 0\n1 1 0\nb 1/2 1/2\nbhat 1 1\n");
   write("huge.tableau", "order 4\n" + std::string(rk4_rows) + std::string(70000 - 8 - std::strlen(rk4_rows), '#'));
   ::mkfifo((dir / "fifo").c_str(), 0644);
   fs::create_directory(dir / "folder");
@@ -170,8 +172,24 @@ std::vector<ProgramOutputs> every_output() {
                       "cg_run.md", "rk4_agreement.md", "rk4_halving_ratio.md"},
                      in_folders(joined(prefixed("full_"), prefixed("one_")), run_files)),
               in_folders({"definite_K50_D0", "stiff_K100000_h0.1", "cg_K50_D0"}, run_files))},
+#ifdef CLOTH_HAVE_CH08_ADAPTIVE_STEP
+      {"ch08_adaptive_step", {}, joined(run_files, {"steps.dat"})},
+      {"ch08_adaptive_step",
+       {"--experiments", "--quick"},
+       {"pairs.md", "order_conditions.md", "tree_counts.md", "hard_case.dat", "hard_case.md", "pairs.dat",
+        "controllers.md", "jump_response.dat", "jump_response.md", "estimate_check.dat", "estimate_summary.dat",
+        "estimate_check.md"}},
+#endif
   };
 }
+
+// The cases every_output() makes: one per output, one for the last output's temporary name, one for a subfolder.
+constexpr std::size_t folder_cases_ch01_ch04 = 123;
+#ifdef CLOTH_HAVE_CH08_ADAPTIVE_STEP
+constexpr std::size_t folder_cases_ch08 = (5 + 1) + (12 + 1);
+#else
+constexpr std::size_t folder_cases_ch08 = 0;
+#endif
 
 Setup folder_at(const std::string& path) {
   return [path](const fs::path& cwd) { fs::create_directories(cwd / path); };
@@ -209,7 +227,7 @@ TEST_CASE("matches: '*' spans any text, the rest matches exactly") {
 #if defined(CLOTH_HAVE_CH01_SPRINGS) && defined(CLOTH_HAVE_CH02_EXPLICIT_EULER) && \
     defined(CLOTH_HAVE_CH03_RUNGE_KUTTA) && defined(CLOTH_HAVE_CH04_IMPLICIT_EULER)
 
-TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad input: status 2, nothing written") {
+TEST_CASE("a folder in the way of any output of ch01-ch04 and ch08, in any mode, is bad input: status 2, nothing written") {
   std::vector<Refused> cases;
   for (const ProgramOutputs& p : every_output()) {
     for (const std::string& name : p.outputs)
@@ -223,7 +241,7 @@ TEST_CASE("a folder in the way of any output of ch01-ch04, in any mode, is bad i
       cases.push_back({p.program, p.args, "--out: 'out/" + sub + file_in_the_way, file_at("out/" + sub)});
     }
   }
-  CHECK(cases.size() == 123);
+  CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08);
   expect_refused(cases);
 }
 
@@ -361,5 +379,36 @@ TEST_CASE("hostile tableau files: not regular, not text, too large, keys twice, 
        "a readable file"},
   });
 }
+
+#ifdef CLOTH_HAVE_CH08_ADAPTIVE_STEP
+TEST_CASE("hostile adaptive-step flags: tolerances, the first step, the controller, a tableau without b-hat") {
+  const std::string pairs = "(heun_euler, bs32, rkf45, cash_karp, dopri5, tsit5)";
+  expect_refused({
+      {"ch08_adaptive_step", {"--tol", "0"}, "--tol: '0' is not a positive number"},
+      {"ch08_adaptive_step", {"--tol", "1e-400"}, "--tol: '1e-400" + too_small},
+      {"ch08_adaptive_step", {"--tol", "1e-6", "--tol", "1e-7"}, "--tol: given twice ('1e-6', then '1e-7'): " + given_twice},
+      {"ch08_adaptive_step", {"--tol", "1e-6", "--atol", "1e-6"},
+       "--tol: sets rtol and atol both; give either --tol or --rtol/--atol"},
+      {"ch08_adaptive_step", {"--rtol", "-1"}, "--rtol: '-1' is not a positive number"},
+      {"ch08_adaptive_step", {"--atol", "inf"}, "--atol: expected a finite number, got 'inf'"},
+      {"ch08_adaptive_step", {"--first-step", "0"}, "--first-step: '0' is not a positive number"},
+      {"ch08_adaptive_step", {"--first-step", "-1e-3"}, "--first-step: '-1e-3' is not a positive number"},
+      {"ch08_adaptive_step", {"--controller", "pid"}, "--controller: 'pid' is not a controller: expected elementary or pi"},
+      {"ch08_adaptive_step", {"--norm", "l1"}, "--norm: 'l1' is not an error norm: expected rms or max"},
+      {"ch08_adaptive_step", {"--max-spring-turn", "0"}, "--max-spring-turn: '0' is not a positive number"},
+      // the step is chosen by error control, so --dt is not one of its flags
+      {"ch08_adaptive_step", {"--dt", "0.01"}, "unknown flag '--dt' (ch08_adaptive_step --help lists the accepted flags)"},
+      {"ch08_adaptive_step", {"--tableau", "rk4"},
+       "--tableau: 'rk4' is neither a built-in embedded pair " + pairs + " nor a readable file"},
+      {"ch08_adaptive_step", {"--tableau", "@S/no_bhat.tableau"},
+       "--tableau: @S/no_bhat.tableau: the tableau has no embedded row: an adaptive step needs a second weight row "
+       "'bhat ...' with its 'embedded_order q'"},
+      {"ch08_adaptive_step", {"--tableau", "@S/bhat_wrong.tableau"},
+       "--tableau: @S/bhat_wrong.tableau: tableau '@S/bhat_wrong.tableau': claims order 1 for bhat but the order-1 "
+       "condition sum bhat_i = 1 (tree t) fails by 1"},
+      {"ch08_adaptive_step", {"--tableau", "@S/fifo"}, "--tableau: '@S/fifo' is a FIFO (named pipe): expected a regular text file"},
+  });
+}
+#endif
 
 #endif

@@ -12,7 +12,8 @@ namespace ch08 {
 /// The files run_experiments writes, relative to --out.
 std::vector<std::string> experiment_outputs();
 
-/// Runs every study and writes its data into opt.run.out_dir (see experiments.cpp).
-void run_experiments(const cloth::Options& opt, bool quick);
+/// Runs every study and writes its data and its tables for the page into opt.run.out_dir (see experiments.cpp);
+/// `command` is the command line a reader would type, named under each table.
+void run_experiments(const cloth::Options& opt, bool quick, const std::string& command);
 
 }  // namespace ch08

@@ -7,8 +7,9 @@
 #include "base/input_error.hpp"
 #include "base/text.hpp"
 #include "integrators/adaptive_simulate.hpp"
-#include "integrators/embedded_tableaus.hpp"
+#include "integrators/method_registry.hpp"
 #include "program/command_line.hpp"
+#include "program/fragment.hpp"
 #include "program/output.hpp"
 #include "program/run_outputs.hpp"
 
@@ -74,11 +75,16 @@ int main(int argc, char** argv) {
   AdaptiveSettings settings;
   bool experiments = false, quick = false;
   CommandLine cli("ch08_adaptive_step",
-                  "Chapter 8: adaptive step size from an embedded Runge-Kutta pair on the report's cloth.\n"
-                  "--dt is not used: the step is chosen by error control.");
+                  "Chapter 8: adaptive step size from an embedded Runge-Kutta pair on the report's cloth.");
+  // Every common flag but --dt: the step is chosen by error control.
+  cli.use_common({"--grid", "--spacing", "--mass", "--K", "--K-flexion", "--damping", "--damping-model", "--springs",
+                  "--pins", "--v0", "--t-end", "--frames", "--out"});
+  std::string pair_names;
+  for (const Method* m : methods_of(MethodFamily::embedded_runge_kutta))
+    pair_names += (pair_names.empty() ? "" : ", ") + m->name;
   cli.add_value("--tableau", "NAME|FILE",
-                "an embedded pair: heun_euler, bs32, rkf45, cash_karp, dopri5, tsit5 (default dopri5), or a tableau "
-                "file with a 'bhat' row",
+                "an embedded pair of the method registry: " + pair_names +
+                    " (default dopri5), or a tableau file with a 'bhat' row",
                 [&](const std::string& s) { tableau_argument = s; });
   cli.add_value("--tol", "TOL", "rtol = atol = TOL (default 1e-6)", [&](const std::string& s) { tol = positive(s); });
   cli.add_value("--rtol", "R", "relative tolerance (default 1e-6)", [&](const std::string& s) { rtol = positive(s); });
@@ -94,7 +100,7 @@ int main(int argc, char** argv) {
   std::optional<NormKind> norm;
   cli.add_value("--norm", "rms|max", "error norm over the state's components (default rms)",
                 [&](const std::string& s) { norm = norm_from_name(s); });
-  cli.add_switch("--experiments", "the chapter's studies instead of one run (folders of --out; exit 0)",
+  cli.add_switch("--experiments", "the chapter's studies instead of one run: their data, and the tables of the book's page, in --out",
                  [&] { experiments = true; });
   cli.add_switch("--quick", "with --experiments: the reduced studies of the plots target", [&] { quick = true; });
   return run_program(cli.program(), [&] {
@@ -107,7 +113,7 @@ int main(int argc, char** argv) {
     single_run.emplace_back("steps.dat");
     if (experiments) {
       prepare_outputs(opt.run.out_dir, ch08::experiment_outputs(), single_run);
-      ch08::run_experiments(opt, quick);
+      ch08::run_experiments(opt, quick, reader_command(argc, argv));
       return 0;
     }
     ButcherTableau tableau;

@@ -7,8 +7,9 @@
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "integrators/adaptive_simulate.hpp"
-#include "integrators/embedded_tableaus.hpp"
+#include "integrators/method_registry.hpp"
 #include "program/command_line.hpp"
+#include "program/fragment.hpp"
 #include "program/output.hpp"
 
 #include <boost/numeric/odeint.hpp>
@@ -103,12 +104,14 @@ int main(int argc, char** argv) {
     bool t_end_given = false;
     for (int k = 1; k < argc; ++k) t_end_given = t_end_given || std::string(argv[k]) == "--t-end";
     const double T = t_end_given ? opt.run.t_end : 1.0;
-    prepare_outputs(opt.run.out_dir, {"work_precision.dat", "levels.dat"});
+    prepare_outputs(opt.run.out_dir, {"work_precision.dat", "levels.dat", "levels.md", "reference.md",
+                                      "spring_turn.md", "evaluation_cost.md"});
+    const std::string command = reader_command(argc, argv);
     const Scene scene(opt.scene);
     const std::string dir = opt.run.out_dir + "/";
 
     // The reference and its credential.
-    const double ref_tol = quick ? 1e-11 : 1e-14;
+    const double ref_tol = quick ? 1e-10 : 1e-14;
     long long ref_steps = 0, check_steps = 0;
     const auto r0 = std::chrono::steady_clock::now();
     const LongState ref = long_double_run<odeint::runge_kutta_dopri5<LongState, long double, LongState, long double>>(scene, T, ref_tol, ref_steps);
@@ -119,12 +122,18 @@ int main(int argc, char** argv) {
                 ref_tol, ref_steps, check_steps,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count(), agreement, T);
     const double floor = 100 * agreement;  // errors below this are not measurements
+    write_text_fragment(dir + "reference.md",
+                        "The reference of this run is odeint's Dormand-Prince in `long double` at rtol = atol = " +
+                            format_number(ref_tol) + " (" + std::to_string(ref_steps) +
+                            " steps); the same computation with Cash-Karp (" + std::to_string(check_steps) +
+                            " steps) lands " + format_number(agreement, 2) + " m from it at T = " + format_number(T) +
+                            " s, so errors below " + format_number(floor, 2) + " m are not plotted (`" + command +
+                            "`).\n");
 
     std::vector<Row> rows;
     std::vector<double> tolerances;
     for (int k = quick ? 3 : 2; k <= (quick ? 8 : 11); ++k) tolerances.push_back(std::pow(10.0, -k));
-    if (!quick)
-      for (int k = 2; k <= 10; ++k) tolerances.push_back(3 * std::pow(10.0, -k - 1));
+    for (int k = quick ? 3 : 2; k <= (quick ? 7 : 10); ++k) tolerances.push_back(3 * std::pow(10.0, -k - 1));
     std::sort(tolerances.begin(), tolerances.end(), std::greater<>());
 
     RunSettings run = opt.run;
@@ -142,7 +151,8 @@ int main(int argc, char** argv) {
       rows.push_back({series, tableau.name, tol, position_error(result.x, ref), t.wall, t.cpu,
                       result.counters.rhs_evaluations});
     };
-    for (const ButcherTableau& tableau : embedded_tableaus()) {
+    for (const Method* row : methods_of(MethodFamily::embedded_runge_kutta)) {
+      const ButcherTableau& tableau = *row->tableau;
       if (tableau.name == "heun_euler") continue;  // order 2: far off the diagram at these errors
       for (const NormKind norm : {NormKind::rms, NormKind::max})
       for (const double tol : tolerances) {
@@ -218,42 +228,93 @@ int main(int argc, char** argv) {
     }
     table.commit();
 
-    // [levels]
+    // Dopri5 with and without the check on springs that turn: the global error in tolerances and the work.
+    MarkdownTable turn({"rtol = atol", "error at T / tolerance", "evaluations", "with --max-spring-turn 0.5: error / tolerance",
+                        "evaluations"},
+                       "rrrrr");
+    for (const double tol : tolerances) {
+      const Row* plain_row = nullptr;
+      const Row* turn_row = nullptr;
+      for (const Row& r : rows)
+        if (r.method == "dopri5" && r.tol == tol) {
+          if (r.series == "project_rms") plain_row = &r;
+          if (r.series == "project_rms_turn") turn_row = &r;
+        }
+      const auto cells = [&](const Row* r) -> std::vector<std::string> {
+        if (!r || r->error < floor) return {"-", "-"};
+        return {format_number(r->error / tol, 2), std::to_string(r->evaluations)};
+      };
+      const auto a = cells(plain_row), b = cells(turn_row);
+      turn.add_row({format_number(tol), a[0], a[1], b[0], b[1]});
+    }
+    write_table_fragment(dir + "spring_turn.md", turn, command);
+
+    // What one evaluation of the right-hand side costs inside odeint's dopri5, with the plain loop and with the
+    // project's forces: the run with the most evaluations of each, thread CPU time over evaluations.
+    MarkdownTable cost({"right-hand side", "evaluations", "microseconds per evaluation (odeint dopri5 run)"}, "lrr");
+    for (const char* series : {"odeint_plain", "odeint_project_forces"}) {
+      const Row* most = nullptr;
+      for (const Row& r : rows)
+        if (r.series == series && r.method == "dopri5" && (!most || r.evaluations > most->evaluations)) most = &r;
+      if (most)
+        cost.add_row({std::string(series) == "odeint_plain" ? "plain loop (the reader's program)" : "the project's forces",
+                      std::to_string(most->evaluations), format_number(1e6 * most->cpu / static_cast<double>(most->evaluations), 3)});
+    }
+    write_table_fragment(dir + "evaluation_cost.md", cost, command);
+
     // At each error level: the cheapest run of each series that reaches it (thread CPU time, best of the timed
     // runs: on a shared machine the wall clock also counts the time the thread waited for a core), and the
-    // ratios of the speed target.
+    // ratios of the project's time to odeint's.
     OutputFile levels(dir + "levels.dat");
     std::fprintf(levels.get(), "# (thread CPU seconds) level_m project_best project_seconds odeint_dopri5_plain_s odeint_cash_karp54_plain_s "
                                "odeint_dopri5_project_forces_s odeint_cash_karp54_project_forces_s "
                                "ratio_to_dopri5_plain ratio_to_best_odeint_project_forces\n");
+    MarkdownTable level_table({"error at T", "fastest project run", "project [ms]", "odeint dopri5, plain [ms]",
+                               "odeint cash_karp54, plain [ms]", "odeint dopri5, project forces [ms]",
+                               "odeint cash_karp54, project forces [ms]", "project / odeint dopri5 plain",
+                               "project / best odeint on project forces"},
+                              "llrrrrrrr");
+    const auto ms = [](double seconds) { return std::isnan(seconds) ? std::string("-") : format_number(1e3 * seconds, 3); };
+    const auto ratio = [](double x) { return std::isnan(x) ? std::string("-") : format_fixed(x, 2); };
     for (int k = 3; k <= 8; ++k) {
       const double level = std::pow(10.0, -k);
       if (level < floor) continue;  // not measurable against this reference
+      // [levels]
+      // The least CPU time of a run of `series` (and `method`, unless empty) whose error at T is within `level`.
       const auto cheapest = [&](const std::string& series, const std::string& method, std::string* which) {
         double best = 1e300;
         for (const Row& r : rows)
           if (r.series.rfind(series, 0) == 0 && (method.empty() || r.method == method) && r.error <= level &&
               r.cpu < best) {
             best = r.cpu;
-            if (which) *which = r.series.substr(8) + ":" + r.method + "@" + format_number(r.tol, 2);
+            if (which) {
+              std::string options = r.series.substr(8);  // "rms", "max", "rms_elementary", "rms_turn"
+              std::replace(options.begin(), options.end(), '_', ' ');
+              *which = "`" + r.method + "` " + options + ", tol " + format_number(r.tol, 2);
+            }
           }
         return best < 1e300 ? best : std::nan("");  // nan: no run of the series reached the level
       };
-      std::string which = "-";
+      // [levels]
+      std::string which = "-";  // for the page; levels.dat gets it without spaces
       const double mine = cheapest("project", "", &which);
       const double dp = cheapest("odeint_plain", "dopri5", nullptr), ck = cheapest("odeint_plain", "cash_karp54", nullptr);
       const double dpf = cheapest("odeint_project_forces", "dopri5", nullptr);
       const double ckf = cheapest("odeint_project_forces", "cash_karp54", nullptr);
-      std::fprintf(levels.get(), "%.0e %s %.4e %.4e %.4e %.4e %.4e %.3f %.3f\n", level, which.c_str(), mine, dp, ck, dpf,
-                   ckf, mine / dp, mine / std::min(dpf, ckf));
+      std::string which_word = which;
+      std::replace(which_word.begin(), which_word.end(), ' ', '_');
+      std::fprintf(levels.get(), "%.0e %s %.4e %.4e %.4e %.4e %.4e %.3f %.3f\n", level, which_word.c_str(), mine, dp, ck, dpf,
+                   ckf, mine / dp, mine / std::fmin(dpf, ckf));
       std::printf("error <= %.0e m: project %s %.2f ms | odeint plain dopri5 %.2f ms, cash_karp54 %.2f ms | odeint on "
                   "the project's forces dopri5 %.2f ms, cash_karp54 %.2f ms | project / plain dopri5 = %.2f, project / "
                   "best odeint on project forces = %.2f\n",
                   level, which.c_str(), 1e3 * mine, 1e3 * dp, 1e3 * ck, 1e3 * dpf, 1e3 * ckf, mine / dp,
-                  mine / std::min(dpf, ckf));
+                  mine / std::fmin(dpf, ckf));
+      level_table.add_row({format_number(level) + " m", which, ms(mine), ms(dp), ms(ck), ms(dpf), ms(ckf), ratio(mine / dp),
+                           ratio(mine / std::fmin(dpf, ckf))});
     }
     levels.commit();
-    // [levels]
+    write_table_fragment(dir + "levels.md", level_table, command);
     return 0;
   });
 }

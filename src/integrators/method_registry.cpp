@@ -3,10 +3,10 @@
 
 #include "base/input_error.hpp"
 #include "base/text.hpp"
+#include "integrators/embedded_runge_kutta.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
 #include "integrators/local_global.hpp"
 #include "integrators/symplectic_euler.hpp"
-
 
 #include <sys/stat.h>
 
@@ -81,6 +81,60 @@ Method explicit_runge_kutta(const char* name, const char* title, int order,
           make_explicit_runge_kutta};
 }
 
+std::unique_ptr<Stepper> make_embedded_runge_kutta(const Method& m, ForceField& field,
+                                                   const MethodSettings& /*settings*/) {
+  // As a Stepper the pair takes fixed steps with its row b; step control drives it through adaptive_simulate.
+  return std::make_unique<EmbeddedRungeKutta>(field, *m.tableau);
+}
+
+using Row = std::initializer_list<double>;
+
+// A row of the embedded Runge-Kutta family (Chapter 8) from its strictly lower triangle (row i holds a_i1 ..
+// a_i,i-1; the first row is empty), the weights b that advance the solution and the weights b-hat that only
+// measure; c is the row sums of A. `order` is the order of b, `embedded_order` that of b-hat.
+Method embedded_pair(const char* name, const char* title, int order, int embedded_order, std::initializer_list<Row> lower,
+                     Row b, Row b_hat, Complex (*stability)(Complex) = nullptr) {
+  ButcherTableau t;
+  t.name = name;
+  t.order = order;
+  t.embedded_order = embedded_order;
+  const auto s = static_cast<Eigen::Index>(b.size());
+  t.A = Eigen::MatrixXd::Zero(s, s);
+  Eigen::Index i = 0;
+  for (const Row& row : lower) {
+    Eigen::Index j = 0;
+    for (const double a : row) t.A(i, j++) = a;
+    ++i;
+  }
+  t.b = Eigen::Map<const Eigen::VectorXd>(b.begin(), s);
+  t.b_hat = Eigen::Map<const Eigen::VectorXd>(b_hat.begin(), s);
+  t.c = t.A.rowwise().sum();
+  return {name, title, MethodFamily::embedded_runge_kutta, order, t, stability, make_embedded_runge_kutta};
+}
+
+// Tsitouras (2011), "Runge-Kutta pairs of order 5(4) satisfying only the first column simplifying assumption",
+// Comput. Math. Appl. 62(2), Table 1: first same as last like dopri5, with smaller fifth-order error coefficients.
+// The paper gives 16 decimals and the differences e = b - b-hat (e_7 = -1/66), so b-hat is formed from them.
+Method tsitouras5() {
+  const Row b = {0.09646076681806523, 0.01, 0.4798896504144996, 1.379008574103742, -3.290069515436081,
+                 2.324710524099774, 0};
+  const double e[] = {0.0017800110522257773, 0.0008164344596567463, -0.007880878010261994, 0.1447110071732629,
+                      -0.5823571654525552,  0.45808210592918686,   -1.0 / 66};
+  Method m = embedded_pair("tsit5", "Tsitouras 5(4)", 5, 4,
+                           {{},
+                            {0.161},
+                            {-0.008480655492356989, 0.335480655492357},
+                            {2.8971530571054935, -6.359448489975075, 4.3622954328695815},
+                            {5.325864828439257, -11.748883564062828, 7.4955393428898365, -0.09249506636175525},
+                            {5.86145544294642, -12.92096931784711, 8.159367898576159, -0.071584973281401,
+                             -0.02826905039406838},
+                            b},
+                           b, b);
+  ButcherTableau& t = *m.tableau;
+  for (Eigen::Index i = 0; i < t.b_hat.size(); ++i) t.b_hat[i] = t.b[i] - e[i];
+  return m;
+}
+
 }  // namespace
 
 const std::vector<Method>& methods() {
@@ -105,6 +159,52 @@ const std::vector<Method>& methods() {
       explicit_runge_kutta("rule38", "3/8 rule", 4, {{0, 0, 0, 0}, {1.0 / 3, 0, 0, 0}, {-1.0 / 3, 1, 0, 0}, {1, -1, 1, 0}},
                            {1.0 / 8, 3.0 / 8, 3.0 / 8, 1.0 / 8}, taylor_of_exp<4>),
       // [runge_kutta_rows]
+      // [embedded_pairs]
+      // Chapter 8's embedded pairs: two weight rows over one set of stages, b advancing the solution and b-hat
+      // measuring its local error, each transcribed from the paper that published it.
+      // Heun's method with explicit Euler inside it: the simplest pair (its estimate is the Euler step's error).
+      embedded_pair("heun_euler", "Heun-Euler 2(1)", 2, 1, {{}, {1}}, {1.0 / 2, 1.0 / 2}, {1, 0}, taylor_of_exp<2>),
+      // Bogacki & Shampine (1989), "A 3(2) pair of Runge-Kutta formulas", Appl. Math. Lett. 2(4): first same as
+      // last, so three evaluations per step; its b has three nonzero weights, so R(z) is Kutta's.
+      embedded_pair("bs32", "Bogacki-Shampine 3(2)", 3, 2, {{}, {1.0 / 2}, {0, 3.0 / 4}, {2.0 / 9, 1.0 / 3, 4.0 / 9}},
+                    {2.0 / 9, 1.0 / 3, 4.0 / 9, 0}, {7.0 / 24, 1.0 / 4, 1.0 / 3, 1.0 / 8}, taylor_of_exp<3>),
+      // Fehlberg (1969), NASA TR R-315, "Low-order classical Runge-Kutta formulas with stepsize control", Table
+      // III: the pair RKF4(5), which advances with its fourth-order row as Fehlberg intended.
+      embedded_pair("rkf45", "Fehlberg 4(5)", 4, 5,
+                    {{},
+                     {1.0 / 4},
+                     {3.0 / 32, 9.0 / 32},
+                     {1932.0 / 2197, -7200.0 / 2197, 7296.0 / 2197},
+                     {439.0 / 216, -8, 3680.0 / 513, -845.0 / 4104},
+                     {-8.0 / 27, 2, -3544.0 / 2565, 1859.0 / 4104, -11.0 / 40}},
+                    {25.0 / 216, 0, 1408.0 / 2565, 2197.0 / 4104, -1.0 / 5, 0},
+                    {16.0 / 135, 0, 6656.0 / 12825, 28561.0 / 56430, -9.0 / 50, 2.0 / 55}),
+      // Cash & Karp (1990), "A variable order Runge-Kutta method for initial value problems with rapidly varying
+      // right-hand sides", ACM TOMS 16(3): advanced with the fifth-order row, as Numerical Recipes and odeint do.
+      embedded_pair("cash_karp", "Cash-Karp 5(4)", 5, 4,
+                    {{},
+                     {1.0 / 5},
+                     {3.0 / 40, 9.0 / 40},
+                     {3.0 / 10, -9.0 / 10, 6.0 / 5},
+                     {-11.0 / 54, 5.0 / 2, -70.0 / 27, 35.0 / 27},
+                     {1631.0 / 55296, 175.0 / 512, 575.0 / 13824, 44275.0 / 110592, 253.0 / 4096}},
+                    {37.0 / 378, 0, 250.0 / 621, 125.0 / 594, 0, 512.0 / 1771},
+                    {2825.0 / 27648, 0, 18575.0 / 48384, 13525.0 / 55296, 277.0 / 14336, 1.0 / 4}),
+      // Dormand & Prince (1980), "A family of embedded Runge-Kutta formulae", J. Comput. Appl. Math. 6(1), the pair
+      // RK5(4)7M: seven stages of which the last is the next step's first (FSAL), so six evaluations per step.
+      embedded_pair("dopri5", "Dormand-Prince 5(4)", 5, 4,
+                    {{},
+                     {1.0 / 5},
+                     {3.0 / 40, 9.0 / 40},
+                     {44.0 / 45, -56.0 / 15, 32.0 / 9},
+                     {19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729},
+                     {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656},
+                     {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84}},
+                    {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84, 0},
+                    {5179.0 / 57600, 0, 7571.0 / 16695, 393.0 / 640, -92097.0 / 339200, 187.0 / 2100, 1.0 / 40}),
+      // Tsitouras (2011): 5(4) and first same as last, with its coefficients written out in tsitouras5() above.
+      tsitouras5(),
+      // [embedded_pairs]
       // Implicit Euler (Chapter 4): the one-stage tableau A = [1], b = [1]. Its stepper is Chapter 4's Newton
       // solver for that one stage; NewtonSettings choose the variant (full, one), the linear solver and the
       // Jacobian treatment.
@@ -155,6 +255,23 @@ ButcherTableau tableau_from_argument(const std::string& name_or_path) {
   struct stat info {};
   if (::stat(name_or_path.c_str(), &info) == 0) return read_tableau(name_or_path);
   throw InputError("'" + escaped(name_or_path) + "' is neither a built-in tableau (" + names + ") nor a readable file");
+}
+
+ButcherTableau embedded_tableau_from_argument(const std::string& name_or_path) {
+  std::string names;
+  for (const Method* m : methods_of(MethodFamily::embedded_runge_kutta)) {
+    if (m->name == name_or_path) return *m->tableau;
+    names += (names.empty() ? "" : ", ") + m->name;
+  }
+  struct stat info {};  // anything that exists is taken for a file, as in tableau_from_argument
+  if (::stat(name_or_path.c_str(), &info) != 0)
+    throw InputError("'" + escaped(name_or_path) + "' is neither a built-in embedded pair (" + names +
+                     ") nor a readable file");
+  ButcherTableau t = read_tableau(name_or_path);
+  if (!t.has_embedded())
+    throw InputError(escaped(name_or_path) + ": the tableau has no embedded row: an adaptive step needs a second "
+                     "weight row 'bhat ...' with its 'embedded_order q'");
+  return t;
 }
 
 }  // namespace cloth

@@ -74,4 +74,9 @@ std::unique_ptr<Stepper> make_stepper(const std::string& name, ForceField& field
 /// Throws InputError listing the accepted names when neither exists, or naming the line that is wrong in a file.
 ButcherTableau tableau_from_argument(const std::string& name_or_path);
 
+/// The tableau of a registered embedded pair (Chapter 8), or else a tableau file with a 'bhat' row. Throws
+/// InputError listing the pairs' names when neither exists, naming the line that is wrong in a file, or when the
+/// file's tableau has no embedded row.
+ButcherTableau embedded_tableau_from_argument(const std::string& name_or_path);
+
 }  // namespace cloth

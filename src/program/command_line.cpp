@@ -282,7 +282,8 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
   } catch (const InputError& e) {
     throw InputError(std::string("scene: ") + e.what());
   }
-  if (uses("--dt") || uses("--t-end")) {
+  // A program without --dt (an adaptive one chooses its own steps) is not held to the fixed step's limits.
+  if (uses("--dt")) {
     if (opt.run.t_end < opt.run.dt)
       throw InputError("--t-end: " + format_number(opt.run.t_end) + " is smaller than --dt " +
                        format_number(opt.run.dt) + ": expected t-end >= dt");
