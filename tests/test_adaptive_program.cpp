@@ -64,6 +64,18 @@ TEST_CASE("ch08_adaptive_step: a tolerance no step can meet stops at the floor o
   CHECK(data_lines(out / "steps.dat").size() > 10);  // every rejected attempt is listed
 }
 
+TEST_CASE("ch08_adaptive_step: no --dt among its flags, and a T shorter than the fixed steps' default is a run") {
+  const ProgramFolder folder;
+  const ProgramRun help = folder.run("ch08_adaptive_step", {"--help"});
+  CHECK(help.status == 0);
+  CHECK(help.out.find("--t-end") != std::string::npos);
+  CHECK(help.out.find("--dt") == std::string::npos);
+  CHECK(help.out.find(">= dt") == std::string::npos);
+  const ProgramRun run = folder.run("ch08_adaptive_step", {"--grid", "5x5", "--t-end", "0.005", "--out", "out"});
+  CHECK(run.status == 0);
+  CHECK(value_of(folder.cwd() / "out" / "run.txt", "status") == "ok");
+}
+
 TEST_CASE("ch08_adaptive_step: a tableau file without an embedded row is refused, naming what is missing") {
   const ProgramFolder folder;
   const ProgramRun run = folder.run(

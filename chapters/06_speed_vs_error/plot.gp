@@ -4,8 +4,9 @@ set terminal pngcairo size 900,620 enhanced font 'Sans,11'
 set grid
 set key outside right top
 # The methods in the order of the data's blocks, and the names a reader reads in the legends.
-array titles[9] = ["explicit Euler", "symplectic Euler", "Heun", "RK4", "3/8 rule", "implicit Euler, Newton, direct", \
-                   "implicit Euler, Newton, CG", "implicit Euler, 1 iteration, direct", "implicit Euler, 1 iteration, CG"]
+array titles[10] = ["explicit Euler", "symplectic Euler", "Heun", "RK4", "3/8 rule", "implicit Euler, Newton, direct", \
+                    "implicit Euler, Newton, CG", "implicit Euler, 1 iteration, direct", "implicit Euler, 1 iteration, CG", \
+                    "dopri5, adaptive (Chapter 8)"]
 # Colour, point type and dash pattern all differ, so that every line can be told apart in greyscale too:
 # explicit methods solid with filled points, implicit ones dashed with open points.
 set style line 1 lc rgb '#d62728' pt 5 dt 1
@@ -17,6 +18,7 @@ set style line 6 lc rgb '#1f77b4' pt 4 dt 2
 set style line 7 lc rgb '#9467bd' pt 6 dt 2
 set style line 8 lc rgb '#1f77b4' pt 8 dt 4
 set style line 9 lc rgb '#9467bd' pt 10 dt 4
+set style line 10 lc rgb '#000000' pt 3 dt 1
 
 do for [cfg in "K50_D0 K200_D20 K5000_D20"] {
   set output plots.'/ch06_wp_'.cfg.'.png'
@@ -28,12 +30,16 @@ do for [cfg in "K50_D0 K200_D20 K5000_D20"] {
   K = substr(cfg, 2, strstrt(cfg, '_') - 1)
   D = substr(cfg, strstrt(cfg, '_D') + 2, strlen(cfg))
   set title 'Work-precision, 20 x 20 cloth, K = '.K.' N/m, D = '.D.' N s/m, T = 0.25 s, h = T / 2^k' noenhanced
-  # Fast and accurate at once is what no method reaches: the bottom left corner is free for a compact key.
-  set key inside bottom left box opaque font ',9' spacing 0.9 samplen 2.5 width -2
-  plot for [i=1:9] data.'/wp_'.cfg.'.dat' index (i-1) using 4:5 with linespoints ls i lw 1.5 title titles[i] noenhanced
+  # Ten curves: the key goes under the plot, where it hides none of them.
+  set terminal pngcairo size 900,760 enhanced font 'Sans,11'
+  set bmargin 9
+  set key at screen 0.5, screen 0.015 center bottom horizontal maxrows 5 box font ',9' spacing 0.9 samplen 2.5
+  plot for [i=1:10] data.'/wp_'.cfg.'.dat' index (i-1) using 4:5 with linespoints ls i lw 1.5 title titles[i] noenhanced
 }
 unset format
 set key outside right top
+set bmargin
+set terminal pngcairo size 900,620 enhanced font 'Sans,11'
 
 set output plots.'/ch06_sensitivity.png'
 set logscale y

@@ -310,7 +310,7 @@ int main(int argc, char** argv) {
                   "best odeint on project forces = %.2f\n",
                   level, which.c_str(), 1e3 * mine, 1e3 * dp, 1e3 * ck, 1e3 * dpf, 1e3 * ckf, mine / dp,
                   mine / std::fmin(dpf, ckf));
-      level_table.add_row({format_number(level) + " m", which, ms(mine), ms(dp), ms(ck), ms(dpf), ms(ckf), ratio(mine / dp),
+      level_table.add_row({"1e-" + std::to_string(k) + " m", which, ms(mine), ms(dp), ms(ck), ms(dpf), ms(ckf), ratio(mine / dp),
                            ratio(mine / std::fmin(dpf, ckf))});
     }
     levels.commit();

@@ -215,9 +215,13 @@ std::string CommandLine::usage() const {
   };
   u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (the book's model page, docs/model.md):\n";
   for (const CommonFlag& f : common_flags)
-    if (uses(f.name))
-      line(std::string(f.name) + " " + f.value_name, f.accepted,
+    if (uses(f.name)) {
+      std::string accepted = f.accepted;
+      // Without --dt (an adaptive program) T is not bounded below by a step.
+      if (const auto at = accepted.find(", >= dt"); at != std::string::npos && !uses("--dt")) accepted.erase(at);
+      line(std::string(f.name) + " " + f.value_name, accepted,
            std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback));
+    }
   line("--help", "this text", "");
   if (!chapter_flags_.empty()) {
     u << "\nChapter flags:\n";
