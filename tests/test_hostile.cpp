@@ -180,6 +180,18 @@ std::vector<ProgramOutputs> every_output() {
         "controllers.md", "jump_response.dat", "jump_response.md", "estimate_check.dat", "estimate_summary.dat",
         "estimate_check.md"}},
 #endif
+#ifdef CLOTH_HAVE_CH10_REAL_CLOTH
+      {"ch10_real_cloth",
+       {"--quick"},
+       {"preset.md", "stable_step.md", "stable_step_agreement.md", "stable_step.dat", "practitioner_summary.txt",
+        "curves_K1000.dat", "curves_K10000.dat", "curves_K100000.dat", "curves_K1e+06.dat", "refinement.md",
+        "refinement.dat", "fabric_frames.dat", "step_cost.md", "step_cost.dat", "map_1cm.md", "map_1mm.md", "map.dat",
+        "map_winners.dat", "practitioner_T0.5.md", "practitioner_T0.5_note.md", "displacement_T0.5.md",
+        "verdict_T0.5_1cm.md", "verdict_T0.5_1mm.md", "curves_practitioner_T0.5.dat"}},
+#endif
+#ifdef CLOTH_HAVE_CH10_PEERS
+      {"ch10_peers", {"--quick"}, {"peers.md", "peers_ratio.md", "peers_check.md", "peers.dat"}},
+#endif
   };
 }
 
@@ -189,6 +201,16 @@ constexpr std::size_t folder_cases_ch01_ch04 = 123;
 constexpr std::size_t folder_cases_ch08 = (5 + 1) + (12 + 1);
 #else
 constexpr std::size_t folder_cases_ch08 = 0;
+#endif
+#ifdef CLOTH_HAVE_CH10_REAL_CLOTH
+constexpr std::size_t folder_cases_ch10 = 24 + 1;
+#else
+constexpr std::size_t folder_cases_ch10 = 0;
+#endif
+#ifdef CLOTH_HAVE_CH10_PEERS
+constexpr std::size_t folder_cases_ch10_peers = 4 + 1;
+#else
+constexpr std::size_t folder_cases_ch10_peers = 0;
 #endif
 
 Setup folder_at(const std::string& path) {
@@ -241,7 +263,7 @@ TEST_CASE("a folder in the way of any output of ch01-ch04 and ch08, in any mode,
       cases.push_back({p.program, p.args, "--out: 'out/" + sub + file_in_the_way, file_at("out/" + sub)});
     }
   }
-  CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08);
+  CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08 + folder_cases_ch10 + folder_cases_ch10_peers);
   expect_refused(cases);
 }
 
@@ -255,6 +277,16 @@ TEST_CASE("hostile flags: given twice, too small to represent, beyond what the m
       {"ch04_implicit_euler", {"--report-runs", "--report-runs"}, "--report-runs: given twice: " + given_twice},
       {"ch02_explicit_euler", {"--out", "a", "--out", "b"}, "--out: given twice ('a', then 'b'): " + given_twice},
       {"ch04_implicit_euler", {"--mass", "2", "--mass", "2"}, "--mass: given twice ('2', then '2'): " + given_twice},
+#ifdef CLOTH_HAVE_CH10_REAL_CLOTH
+      {"ch10_real_cloth", {"--quick", "--quick"}, "--quick: given twice: " + given_twice},
+#endif
+#ifdef CLOTH_HAVE_CH10_PEERS
+      {"ch10_peers", {"--runs", "2", "--runs", "3"}, "--runs: given twice ('2', then '3'): " + given_twice},
+      // Chapter 10's peer comparison: its scene is fixed, and its repetitions are a whole number from 1 to 100.
+      {"ch10_peers", {"--runs", "0"}, "--runs: expected a whole number from 1 to 100, got '0'"},
+      {"ch10_peers", {"--runs", "1e9"}, "--runs: expected a whole number, got '1e9'"},
+      {"ch10_peers", {"--K", "5"}, "unknown flag '--K' (ch10_peers --help lists the accepted flags)"},
+#endif
       // Numbers too small to represent normally: subnormal, or rounded to zero.
       {"ch02_explicit_euler", {"--K", "1e-310"}, "--K: '1e-310" + too_small},
       {"ch03_runge_kutta", {"--v0", "-4e-320"}, "--v0: '-4e-320" + too_small},

@@ -7,9 +7,10 @@
 
 #include "analysis/fastest_modes.hpp"
 #include "analysis/lattice_frequency.hpp"
-#include "integrators/symplectic_euler.hpp"
 #include "model/fabric.hpp"
 #include "program/command_line.hpp"
+#include "program/fragment.hpp"
+#include "program/output.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,21 +25,22 @@ namespace {
 struct Settings {
   bool quick = false;
   std::string out;
+  std::string command;  ///< what a reader types to measure the tables again (reader_command)
 };
 
 // ---------------------------------------------------------------------------------------------------------------
 // The fabric preset, and the same square metre at finer grids.
 
-std::string preset_table() {
+MarkdownTable preset_table() {
   const FabricMeasurements cotton;
-  std::string t =
-      "| particles per side | spacing d [m] | particle mass m = rho_A d^2 [kg] | k structural = k shear [N/m] | "
-      "k flexion [N/m] | omega_max [rad/s] | RK4's stable step [s] |\n|---|---|---|---|---|---|---|\n";
+  MarkdownTable t({"particles per side", "spacing d [m]", "particle mass m = rho_A d^2 [kg]",
+                   "k structural = k shear [N/m]", "k flexion [N/m]", "omega_max [rad/s]", "RK4's stable step [s]"},
+                  "rrrrrrr");
   for (int n : {20, 39, 77, 153}) {
     const SceneParams p = fabric_scene(cotton, {0.95, n, 20.0});
     const double w = lattice_fastest_frequency({p.stiffness, p.stiffness, *p.flexion_stiffness, p.mass});
-    t += format("| %d | %.4g | %.4g | %.6g | %.3g | %.4g | %.3g |\n", n, p.grid.d, p.mass, p.stiffness,
-                *p.flexion_stiffness, w, 2 * std::sqrt(2.0) / w);
+    t.add_row({format("%d", n), format("%.4g", p.grid.d), format("%.4g", p.mass), format("%.6g", p.stiffness),
+               format("%.3g", *p.flexion_stiffness), format("%.4g", w), format("%.3g", 2 * std::sqrt(2.0) / w)});
   }
   return t;
 }
@@ -82,8 +84,8 @@ void refinement(const Settings& s) {
     motion.push_back(fabric_motion(sizes[k], T, snapshots, steps[k], seconds));
     std::printf("refinement: %d x %d, %lld RK4 steps, %.2f s\n", sizes[k], sizes[k], steps[k], seconds);
   }
-  std::string table = "| particles per side | RK4 step [s] | steps | largest distance to the next finer grid at "
-                      "t = 0.1 s, 0.2 s, ..., 0.5 s [m] |\n|---|---|---|---|\n";
+  MarkdownTable table({"particles per side", "RK4 step [s]", "steps",
+                       "largest distance to the next finer grid at t = 0.1 s, 0.2 s, ..., 0.5 s [m]"}, "rrrl");
   std::string dat = "# n h steps then the largest distance to the next finer grid at t = 0.1 ... 0.5\n";
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     std::string distances;
@@ -104,10 +106,10 @@ void refinement(const Settings& s) {
       }
     }
     dat += "\n";
-    table += format("| %d | %.3g | %lld | %s |\n", sizes[k], T / static_cast<double>(steps[k]), steps[k],
-                    k + 1 < sizes.size() ? distances.c_str() : "(finest)");
+    table.add_row({format("%d", sizes[k]), format("%.3g", T / static_cast<double>(steps[k])),
+                   format("%lld", steps[k]), k + 1 < sizes.size() ? distances : "(finest)"});
   }
-  ch10::write_text(s.out, "refinement.md", table);
+  write_table_fragment(s.out + "/refinement.md", table, s.command);
   ch10::write_text(s.out, "refinement.dat", dat);
   // The 39 x 39 fabric at the snapshot times, for the figure: one gnuplot index block per time.
   std::string frames = "# i j x y z of the 39 x 39 fabric, one block per t = 0, 0.1, ..., 0.5 s\n";
@@ -157,8 +159,10 @@ double measured_stable_step(const Scene& scene, const std::string& method, doubl
 double stability_reach(const std::string& method) { return method == "rk4" ? 2 * std::sqrt(2.0) : 2.0; }
 
 void stable_steps(const Settings& s, const std::vector<double>& stiffnesses) {
-  std::string table = "| grid | K [N/m] | omega_max, lattice [rad/s] | omega_max, this cloth [rad/s] | symplectic Euler: "
-                      "predicted / measured h [s] | RK4: predicted / measured h [s] |\n|---|---|---|---|---|---|\n";
+  MarkdownTable table({"grid", "K [N/m]", "omega_max, lattice [rad/s]", "omega_max, this cloth [rad/s]",
+                       "symplectic Euler: predicted / measured h [s]", "RK4: predicted / measured h [s]"},
+                      "lrrrrr");
+  double worst[2] = {0, 0};  // the largest relative difference of prediction and measurement, per method
   std::string dat = "# n K omega_lattice omega_cloth se_predicted se_measured rk4_predicted rk4_measured\n";
   for (int n : s.quick ? std::vector<int>{20} : std::vector<int>{20, 39}) {
     for (double K : stiffnesses) {
@@ -172,14 +176,19 @@ void stable_steps(const Settings& s, const std::vector<double>& stiffnesses) {
       const int halvings = s.quick ? 6 : 9, steps = s.quick ? 1000 : 2000;
       const double se_m = measured_stable_step(scene, "symplectic_euler", se, halvings, steps);
       const double rk_m = measured_stable_step(scene, "rk4", rk, halvings, steps);
-      table += format("| %d x %d | %.0e | %.4g | %.4g | %.3g / %.3g | %.3g / %.3g |\n", n, n, K, lattice, cloth_omega, se,
-                      se_m, rk, rk_m);
+      table.add_row({format("%d x %d", n, n), format("%.0e", K), format("%.4g", lattice), format("%.4g", cloth_omega),
+                     format("%.3g / %.3g", se, se_m), format("%.3g / %.3g", rk, rk_m)});
+      worst[0] = std::max(worst[0], std::abs(se_m / se - 1));
+      worst[1] = std::max(worst[1], std::abs(rk_m / rk - 1));
       dat += format("%d %g %.6g %.6g %.6g %.6g %.6g %.6g\n", n, K, lattice, cloth_omega, se, se_m, rk, rk_m);
       std::printf("stable step %dx%d K %g: omega lattice %.4g cloth %.4g; SE %.3g/%.3g RK4 %.3g/%.3g\n", n, n, K,
                   lattice, cloth_omega, se, se_m, rk, rk_m);
     }
   }
-  ch10::write_text(s.out, "stable_step.md", table);
+  write_table_fragment(s.out + "/stable_step.md", table, s.command);
+  write_text_fragment(s.out + "/stable_step_agreement.md",
+                      format("The prediction holds to %.1f %% for symplectic Euler and to %.1f %% for RK4.",
+                             100 * worst[0], 100 * worst[1]));
   ch10::write_text(s.out, "stable_step.dat", dat);
 }
 
@@ -278,23 +287,31 @@ void write_curves(const Settings& s, const Curves& c, const std::string& tag) {
 void practitioner(const Settings& s, const Curves& c, const std::vector<std::string>& methods, std::string& summary) {
   const std::string tag = format("T%g", c.T);
   write_curves(s, c, "practitioner_" + tag);
-  std::string table = "| method | 1 cm: step h [s] | steps | CPU time [s] | error [m] | 1 mm: step h [s] | steps | "
-                      "CPU time [s] | error [m] |\n|---|---|---|---|---|---|---|---|---|\n";
+  MarkdownTable table({"method", "1 cm: step h [s]", "steps", "CPU time [s]", "error [m]", "1 mm: step h [s]", "steps",
+                       "CPU time [s]", "error [m]"},
+                      "lrrrrrrrr");
   for (const std::string& method : methods) {
-    table += "| " + ch10::label(method) + " |";
+    std::vector<std::string> row = {ch10::label(method)};
     for (double tol : {1e-2, 1e-3}) {
       const Measurement* m = cheapest(c.rows, method, tol);
-      table += m == nullptr ? " - | - | - | - |"
-                            : format(" %s | %lld | %.3g | %.2g |", h_text(m->h).c_str(), m->steps, m->seconds, m->error);
+      for (const std::string& cell : m == nullptr ? std::vector<std::string>{"-", "-", "-", "-"}
+                                                  : std::vector<std::string>{h_text(m->h), format("%lld", m->steps),
+                                                                             format("%.3g", m->seconds),
+                                                                             format("%.2g", m->error)})
+        row.push_back(cell);
     }
-    table += "\n";
+    table.add_row(row);
   }
-  table += format("\nReference: RK4 with %lld steps", c.reference_steps);
+  write_table_fragment(s.out + "/practitioner_" + tag + ".md", table, s.command);
+  std::string note = format("Reference: RK4 with %lld steps", c.reference_steps);
   if (c.reference_agreement >= 0)
-    table += format("; the 3/8 rule with twice as many steps agrees with it to %.1e m", c.reference_agreement);
-  table += format(". At T the farthest particle is %.3g m from its rest position. A dash: no step tried reached the "
-                  "accuracy.\n", c.displacement);
-  ch10::write_text(s.out, "practitioner_" + tag + ".md", table);
+    note += format("; the 3/8 rule with twice as many steps agrees with it to %.1e m", c.reference_agreement);
+  note += format(". At T the farthest particle is %.3g m from its rest position. A dash: no step tried reached the "
+                 "accuracy.", c.displacement);
+  write_text_fragment(s.out + "/practitioner_" + tag + "_note.md", note);
+  write_text_fragment(s.out + "/displacement_" + tag + ".md", format("%.3g m", c.displacement));
+  // [verdict]
+  // The fastest explicit and the fastest implicit run that reached each accuracy, in one sentence each.
   for (double tol : {1e-2, 1e-3}) {
     const Measurement* best_explicit = nullptr;
     const Measurement* best_implicit = nullptr;
@@ -304,17 +321,30 @@ void practitioner(const Settings& s, const Curves& c, const std::vector<std::str
       const Measurement*& slot = ch10::is_explicit(method) ? best_explicit : best_implicit;
       if (slot == nullptr || m->seconds < slot->seconds) slot = m;
     }
-    summary += format("T = %g s, %g m: ", c.T, tol);
-    summary += best_explicit ? format("fastest explicit %s, h = %s, %.3g s; ", ch10::label(best_explicit->method).c_str(),
-                                      h_text(best_explicit->h).c_str(), best_explicit->seconds)
-                             : "no explicit run; ";
-    summary += best_implicit ? format("fastest implicit %s, h = %s, %.3g s", ch10::label(best_implicit->method).c_str(),
-                                      h_text(best_implicit->h).c_str(), best_implicit->seconds)
-                             : "no implicit run reached it";
-    if (best_explicit && best_implicit)
-      summary += format("; implicit / explicit time %.2f", best_implicit->seconds / best_explicit->seconds);
-    summary += "\n";
+    const auto run = [](const Measurement* m) {
+      return format("%s at h = %s (%lld steps), %.3g s, error %.2g m", ch10::label(m->method).c_str(),
+                    h_text(m->h).c_str(), m->steps, m->seconds, m->error);
+    };
+    const std::string accuracy = tol == 1e-2 ? "1 cm" : "1 mm";
+    std::string sentence;
+    if (best_explicit && best_implicit) {
+      const bool implicit_wins = best_implicit->seconds < best_explicit->seconds;
+      const Measurement* winner = implicit_wins ? best_implicit : best_explicit;
+      const Measurement* other = implicit_wins ? best_explicit : best_implicit;
+      sentence = format("To %s the fastest run is %s; the fastest %s one is %s, %.1f times as long.", accuracy.c_str(),
+                        run(winner).c_str(), implicit_wins ? "explicit" : "implicit", run(other).c_str(),
+                        other->seconds / winner->seconds);
+    } else if (best_explicit || best_implicit) {
+      sentence = format("To %s the fastest run is %s; no %s run tried got there.", accuracy.c_str(),
+                        run(best_explicit ? best_explicit : best_implicit).c_str(),
+                        best_explicit ? "implicit" : "explicit");
+    } else {
+      sentence = "No run tried got to " + accuracy + ".";
+    }
+    summary += format("T = %g s: %s\n", c.T, sentence.c_str());
+    write_text_fragment(s.out + format("/verdict_%s_%s.md", tag.c_str(), tol == 1e-2 ? "1cm" : "1mm"), sentence);
   }
+  // [verdict]
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -360,16 +390,18 @@ void map(const Settings& s, const std::map<double, Curves>& curves, const std::v
   // 1. Cost per step against the grid: measured where affordable, beyond that extrapolated as a power of the
   //    number of springs fitted to the two largest measured sizes.
   std::map<std::string, std::map<int, SizeCost>> cost;
-  std::string cost_md = "| method |";
-  for (int n : sizes) cost_md += format(" %d x %d |", n, n);
-  cost_md += " exponent |\n|---|---|---|---|---|---|\n";
+  std::vector<std::string> header = {"method"};
+  for (int n : sizes) header.push_back(format("%d x %d", n, n));
+  header.emplace_back("exponent");
+  MarkdownTable cost_md(header, "lrrrrr");
   std::string cost_dat = "# method n springs seconds_per_step measured\n";
   for (const char* name : {"symplectic_euler", "rk4", "ie_1newton_direct", "ie_1newton_cg", "local_global_10"}) {
     const std::string method = name;
     const bool direct = method == "ie_1newton_direct";
     std::vector<int> measured;
     for (int n : sizes) {
-      if (n > (s.quick ? 39 : (direct ? 77 : 153))) continue;
+      // The quick run measures up to 77 x 77 (39 x 39 for the direct solve, whose factorization is the slowest).
+      if (n > (s.quick ? (direct ? 39 : 77) : (direct ? 77 : 153))) continue;
       const int steps = ch10::is_explicit(method) ? (n > 40 ? 20 : 200) : (n > 40 ? 2 : 10);
       cost[method][n] = {measure_step_cost(n, method, steps), true};
       measured.push_back(n);
@@ -380,17 +412,18 @@ void map(const Settings& s, const std::map<double, Curves>& curves, const std::v
     for (int n : sizes)
       if (!cost[method][n].measured)
         cost[method][n] = {cost[method][b].seconds * std::pow(springs(n) / springs(b), exponent), false};
-    cost_md += "| " + ch10::label(method) + " |";
+    std::vector<std::string> row = {ch10::label(method)};
     for (int n : sizes) {
-      cost_md += format(" %.3g ms%s |", 1e3 * cost[method][n].seconds, cost[method][n].measured ? "" : " (predicted)");
+      row.push_back(format("%.3g ms%s", 1e3 * cost[method][n].seconds, cost[method][n].measured ? "" : " (predicted)"));
       cost_dat += format("%s %d %.0f %.6e %d\n", method.c_str(), n, springs(n), cost[method][n].seconds,
                          cost[method][n].measured ? 1 : 0);
     }
-    cost_md += format(" %.2f |\n", exponent);
+    row.push_back(format("%.2f", exponent));
+    cost_md.add_row(row);
     cost_dat += "\n\n";
     std::printf("cost per step %s: exponent %.2f over %d..%d\n", method.c_str(), exponent, a, b);
   }
-  ch10::write_text(s.out, "step_cost.md", cost_md);
+  write_table_fragment(s.out + "/step_cost.md", cost_md, s.command);
   ch10::write_text(s.out, "step_cost.dat", cost_dat);
 
   // [cost_model]
@@ -409,20 +442,17 @@ void map(const Settings& s, const std::map<double, Curves>& curves, const std::v
   };
   // [cost_model]
   std::string dat = "# tol K n method predicted_cpu_seconds\n";
-  std::string md[2];
+  std::vector<std::string> map_header = {"K [N/m]"};
+  for (int n : sizes) map_header.push_back(format("%d x %d", n, n));
+  MarkdownTable md[2] = {MarkdownTable(map_header, "lllll"), MarkdownTable(map_header, "lllll")};
   const double tols[2] = {1e-2, 1e-3};
-  for (auto& t : md) {
-    t = "| K [N/m] |";
-    for (int n : sizes) t += format(" %d x %d |", n, n);
-    t += "\n|---|---|---|---|---|\n";
-  }
   int winner_index = 0;
   std::map<std::string, int> winner_code;
   std::string winners = "# tol K n winner_code winner predicted_seconds runner_up_ratio\n";
   for (const auto& [K, c] : curves) {
     if (c.T != 0.5) continue;
     for (int t = 0; t < 2; ++t) {
-      md[t] += format("| %.0e |", K);
+      std::vector<std::string> row = {format("%.0e", K)};
       for (int n : sizes) {
         std::string best;
         double best_seconds = INFINITY, second = INFINITY;
@@ -435,22 +465,45 @@ void map(const Settings& s, const std::map<double, Curves>& curves, const std::v
           else second = std::min(second, seconds);
         }
         if (best.empty()) {
-          md[t] += " none reached it |";
+          row.emplace_back("none reached it");
           continue;
         }
         if (!winner_code.contains(best)) winner_code[best] = winner_index++;
         winners += format("%g %g %d %d %s %.6e %.6e\n", tols[t], K, n, winner_code[best], best.c_str(), best_seconds,
                           second / best_seconds);
-        md[t] += format(" %s: %.3g s%s, next %.1fx |", ch10::label(best).c_str(), best_seconds,
-                        n == 20 ? " (measured)" : "", second / best_seconds);
+        row.push_back(format("%s: %.3g s%s, next %.1fx", ch10::label(best).c_str(), best_seconds,
+                             n == 20 ? " (measured)" : "", second / best_seconds));
       }
-      md[t] += "\n";
+      md[t].add_row(row);
     }
   }
-  ch10::write_text(s.out, "map_1cm.md", md[0]);
-  ch10::write_text(s.out, "map_1mm.md", md[1]);
+  write_table_fragment(s.out + "/map_1cm.md", md[0], s.command);
+  write_table_fragment(s.out + "/map_1mm.md", md[1], s.command);
   ch10::write_text(s.out, "map.dat", dat);
   ch10::write_text(s.out, "map_winners.dat", winners);
+}
+
+// The files of a practitioner's table at T (a tag such as "T0.5").
+std::vector<std::string> practitioner_files(const std::string& tag) {
+  return {"practitioner_" + tag + ".md", "practitioner_" + tag + "_note.md", "displacement_" + tag + ".md",
+          "verdict_" + tag + "_1cm.md", "verdict_" + tag + "_1mm.md", "curves_practitioner_" + tag + ".dat"};
+}
+
+// What only the full sweep writes: the practitioner's question over a whole second.
+std::vector<std::string> full_run_only() { return practitioner_files("T1"); }
+
+// Every file a run writes (the tables are the page's fragments).
+std::vector<std::string> outputs(bool quick) {
+  std::vector<std::string> files = {"preset.md",        "stable_step.md",      "stable_step_agreement.md",
+                                    "stable_step.dat",  "practitioner_summary.txt", "curves_K1000.dat",
+                                    "curves_K10000.dat", "curves_K100000.dat", "curves_K1e+06.dat",
+                                    "refinement.md",    "refinement.dat",      "fabric_frames.dat",
+                                    "step_cost.md",     "step_cost.dat",       "map_1cm.md",
+                                    "map_1mm.md",       "map.dat",             "map_winners.dat"};
+  for (const std::string& f : practitioner_files("T0.5")) files.push_back(f);
+  if (!quick)
+    for (const std::string& f : full_run_only()) files.push_back(f);
+  return files;
 }
 
 }  // namespace
@@ -465,9 +518,10 @@ int main(int argc, char** argv) {
   cli.add_switch("--quick", "a reduced sweep for the plots target (under a minute)", [&] { s.quick = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    prepare_output_dir(opt.run.out_dir);
+    prepare_outputs(opt.run.out_dir, outputs(s.quick), s.quick ? full_run_only() : std::vector<std::string>{});
     s.out = opt.run.out_dir;
-    ch10::write_text(s.out, "preset.md", preset_table());
+    s.command = reader_command(argc, argv);
+    write_table_fragment(s.out + "/preset.md", preset_table(), s.command);
     // [methods]
     const std::vector<double> stiffnesses = {1e3, 1e4, 1e5, 1e6};
     const std::vector<std::string> methods = {"symplectic_euler",  "rk4",           "ie_newton_direct",

@@ -2,17 +2,13 @@
 #include "study.hpp"
 
 #include "integrators/method_registry.hpp"
-#include "integrators/explicit_runge_kutta.hpp"
-#include "integrators/implicit_euler.hpp"
-#include "integrators/local_global.hpp"
-#include "integrators/method_registry.hpp"
-#include "integrators/symplectic_euler.hpp"
 #include "model/fabric.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <ctime>
+#include <stdexcept>
 
 using namespace cloth;
 
@@ -26,40 +22,67 @@ SceneParams fabric(int n, double K) {
   return p;
 }
 
-std::unique_ptr<Stepper> make_method(const std::string& name, ForceField& field) {
-  if (name == "symplectic_euler") return std::make_unique<SymplecticEuler>(field);
-  if (name == "rk4") return std::make_unique<ExplicitRungeKutta>(field, tableau_from_argument("rk4"));
-  // Full Newton: the exact Jacobian (block LDU for the damped cloth), or the definite one with CG. From the flat
-  // sheet at rest a frame-sized step takes Newton through compressed, indefinite states, and its line search needs
-  // dozens of iterations on the first step (Chapter 4), so it is allowed 100. Its tolerance, 1e-6 relative in
-  // the velocity, is a position error below 1e-6 h, far under every error this chapter measures.
-  NewtonSettings newton;
-  newton.max_iterations = 100;
-  newton.tolerance = 1e-6;
-  NewtonSettings cg = newton;
-  cg.treatment = StiffnessTreatment::definite;
-  cg.solver = LinearSolverKind::cg;
-  cg.cg_tolerance = 1e-8;
-  if (name == "ie_newton_direct") return std::make_unique<ImplicitEuler>(field, newton);
-  if (name == "ie_newton_cg") return std::make_unique<ImplicitEuler>(field, cg);
-  newton.variant = cg.variant = NewtonVariant::one;  // Baraff and Witkin's single linearised step
-  if (name == "ie_1newton_direct") return std::make_unique<ImplicitEuler>(field, newton);
-  if (name == "ie_1newton_cg") return std::make_unique<ImplicitEuler>(field, cg);
-  if (name.rfind("local_global_", 0) == 0) return std::make_unique<LocalGlobal>(field, std::stoi(name.substr(13)));
-  throw std::logic_error("ch10: unknown method " + name);
+namespace {
+
+// A method of the chapter, parsed from its key: a registry name as it stands ("symplectic_euler", "rk4"),
+// "ie_<newton|1newton>_<direct|cg>" for the registry's implicit Euler with full Newton or one iteration, on the
+// direct or the CG path, or "local_global_<iterations>".
+struct Configuration {
+  std::string method;  ///< the registry's name
+  MethodSettings settings;
+  std::string detail;  ///< what the settings add to the registry's title
+};
+
+Configuration configuration(const std::string& key) {
+  Configuration c{key, {}, ""};
+  if (key.rfind("ie_", 0) == 0) {
+    c.method = "implicit_euler";
+    // Full Newton: the exact Jacobian (block LDU for the damped cloth), or the definite one with CG. From the flat
+    // sheet at rest a frame-sized step takes Newton through compressed, indefinite states, and its line search
+    // needs dozens of iterations on the first step (Chapter 4), so it is allowed 100. Its tolerance, 1e-6
+    // relative in the velocity, is a position error below 1e-6 h, far under every error this chapter measures.
+    NewtonSettings& newton = c.settings.newton;
+    newton.max_iterations = 100;
+    newton.tolerance = 1e-6;
+    const std::string rest = key.substr(3);
+    if (rest == "newton_direct" || rest == "1newton_direct") {
+      c.detail = ", direct";
+    } else if (rest == "newton_cg" || rest == "1newton_cg") {
+      newton.treatment = StiffnessTreatment::definite;
+      newton.solver = LinearSolverKind::cg;
+      newton.cg_tolerance = 1e-8;
+      c.detail = ", CG";
+    } else {
+      throw std::logic_error("ch10: unknown method " + key);
+    }
+    const bool one = rest.rfind("1newton", 0) == 0;
+    if (one) newton.variant = NewtonVariant::one;  // Baraff and Witkin's single linearised step
+    c.detail = (one ? ", 1 iteration" : ", Newton") + c.detail;
+  } else if (key.rfind("local_global_", 0) == 0) {
+    c.method = "local_global";
+    c.settings.local_global_iterations = std::stoi(key.substr(13));
+    c.detail = ", " + key.substr(13) + " iterations";
+  }
+  find_method(c.method);  // throws for a name the registry does not know
+  return c;
 }
 
-bool is_explicit(const std::string& name) { return name == "symplectic_euler" || name == "rk4"; }
+}  // namespace
 
-std::string label(const std::string& name) {
-  if (name == "symplectic_euler") return "symplectic Euler";
-  if (name == "rk4") return "RK4";
-  if (name == "ie_newton_direct") return "implicit Euler, Newton, direct";
-  if (name == "ie_newton_cg") return "implicit Euler, Newton, CG";
-  if (name == "ie_1newton_direct") return "implicit Euler, 1 iteration, direct";
-  if (name == "ie_1newton_cg") return "implicit Euler, 1 iteration, CG";
-  if (name.rfind("local_global_", 0) == 0) return "local/global, " + name.substr(13) + " iterations";
-  return name;
+std::unique_ptr<Stepper> make_method(const std::string& key, ForceField& field) {
+  const Configuration c = configuration(key);
+  return make_stepper(c.method, field, c.settings);
+}
+
+bool is_explicit(const std::string& key) {
+  const MethodFamily family = find_method(configuration(key).method).family;
+  return family == MethodFamily::explicit_runge_kutta || family == MethodFamily::partitioned ||
+         family == MethodFamily::embedded_runge_kutta;
+}
+
+std::string label(const std::string& key) {
+  const Configuration c = configuration(key);
+  return find_method(c.method).title + c.detail;
 }
 
 double cpu_seconds() {
@@ -114,15 +137,15 @@ double max_distance(const Vector& a, const Vector& b) {
 
 Vector reference(const Scene& scene, double T, long long steps, bool check, double& agreement) {
   ForceField field(scene);
-  ExplicitRungeKutta rk4(field, tableau_from_argument("rk4"));
+  auto rk4 = make_stepper("rk4", field);
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   const double h = T / static_cast<double>(steps);
-  for (long long k = 0; k < steps; ++k) rk4.step(h, x, v);
+  for (long long k = 0; k < steps; ++k) rk4->step(h, x, v);
   agreement = -1;
   if (check) {
-    ExplicitRungeKutta rule38(field, tableau_from_argument("rule38"));
+    auto rule38 = make_stepper("rule38", field);
     Vector y = scene.initial_positions(), w = scene.initial_velocities();
-    for (long long k = 0; k < 2 * steps; ++k) rule38.step(h / 2, y, w);
+    for (long long k = 0; k < 2 * steps; ++k) rule38->step(h / 2, y, w);
     agreement = max_distance(x, y);
   }
   return x;

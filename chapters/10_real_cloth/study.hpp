@@ -16,12 +16,15 @@ namespace ch10 {
 /// m = 6.25e-4 kg at n = 20), one stiffness K for every family, D = 0.01, corners pinned, released from rest.
 cloth::SceneParams fabric(int n, double K);
 
-/// The methods of the chapter: symplectic_euler, rk4, ie_newton_direct, ie_newton_cg, ie_1newton_direct,
-/// ie_1newton_cg, local_global_5, local_global_10, local_global_20, local_global_50.
-std::unique_ptr<cloth::Stepper> make_method(const std::string& name, cloth::ForceField& field);
-bool is_explicit(const std::string& name);
-/// How the page names a method ("implicit Euler, 1 Newton iteration, direct").
-std::string label(const std::string& name);
+/// A method of the registry with the settings the chapter runs it with, by key: a registry name as it stands
+/// ("symplectic_euler", "rk4"); "ie_newton_direct", "ie_newton_cg", "ie_1newton_direct", "ie_1newton_cg" for
+/// implicit Euler with full Newton or one iteration (Baraff and Witkin 1998) on the direct or the CG path;
+/// "local_global_N" for local/global stepping with N iterations. Built by cloth::make_stepper.
+std::unique_ptr<cloth::Stepper> make_method(const std::string& key, cloth::ForceField& field);
+/// Whether the key's registry method is explicit (an explicit, embedded or partitioned Runge-Kutta method).
+bool is_explicit(const std::string& key);
+/// How the page names it: the registry's title and the settings ("implicit Euler, 1 iteration, CG").
+std::string label(const std::string& key);
 
 /// Thread CPU seconds (not counting time spent waiting for a core on a shared machine).
 double cpu_seconds();
