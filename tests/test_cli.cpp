@@ -36,6 +36,9 @@ void write_tableau_files(const fs::path& dir) {
   // The two-stage Gauss method (order 4), fully implicit: Chapter 9's engine refuses it.
   write("gauss2.tableau", "order 4\n0.21132486540518713 0.25 -0.038675134594812866\n"
                           "0.78867513459481287 0.53867513459481287 0.25\nb 1/2 1/2\n");
+  // The trapezoidal rule with explicit Euler's weights embedded (orders 2 and 1), and the same claiming too much.
+  write("trapezoid_pair.tableau", "order 2\nembedded_order 1\n0 0 0\n1 1/2 1/2\nb 1/2 1/2\nbhat 1 0\n");
+  write("overclaimed_pair.tableau", "order 2\nembedded_order 2\n0 0 0\n1 1/2 1/2\nb 1/2 1/2\nbhat 1 0\n");
 }
 
 std::string joined(const std::vector<std::string>& args) {
@@ -319,6 +322,8 @@ TEST_CASE("ch09_implicit_runge_kutta: fully implicit tableaus, --tol without a p
                      {{"--tableau", "gauss2"}, {"--tableau", "'gauss2'", "sdirk2", "trbdf2", "bdf2"}},
                      {{"--tableau", "@S/gauss2.tableau"}, {"--tableau", "gauss2.tableau", "a_12", "fully implicit"}},
                      {{"--tableau", "@S/ragged.tableau"}, {"--tableau", "ragged.tableau:3"}},
+                     {{"--tableau", "@S/overclaimed_pair.tableau"},
+                      {"--tableau", "overclaimed_pair.tableau", "bhat claim order 2", "order-2 condition"}},
                      {{"--tableau", "sdirk2", "--tol", "1e-3"}, {"--tol", "embedded", "trbdf2"}},
                      {{"--tableau", "bdf2", "--tol", "1e-3"}, {"--tol", "bdf2"}},
                      {{"--tableau", "trbdf2", "--tol", "0"}, {"--tol", "(0, 1)"}},
@@ -327,6 +332,19 @@ TEST_CASE("ch09_implicit_runge_kutta: fully implicit tableaus, --tol without a p
                      {{"--linear-solver", "cg", "--jacobian", "exact"}, {"--linear-solver", "cg", "definite"}},
                      {{"--newton-tol", "2"}, {"--newton-tol", "(0, 1)"}},
                  });
+}
+
+TEST_CASE("ch09_implicit_runge_kutta: a tableau file with an embedded pair runs under step control") {
+  const ProgramFolder folder;
+  write_tableau_files(folder.scratch());
+  const ProgramRun run =
+      folder.run("ch09_implicit_runge_kutta", {"--tableau", (folder.scratch() / "trapezoid_pair.tableau").string(),
+                                               "--tol", "1e-3", "--t-end", "0.1", "--out", "run"});
+  CAPTURE(run.err);
+  REQUIRE(run.status == 0);
+  const std::string txt = read_text(folder.cwd() / "run" / "run.txt");
+  CHECK(txt.find("tol = 0.001") != std::string::npos);
+  CHECK(txt.find("status = ok") != std::string::npos);
 }
 
 TEST_CASE("ch09_implicit_runge_kutta: a controlled TR-BDF2 run reports its Newton work and rejected steps") {

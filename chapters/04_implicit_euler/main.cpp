@@ -3,8 +3,6 @@
 #include "program/command_line.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/explicit_runge_kutta.hpp"
-#include "integrators/implicit_euler.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "model/report_cases.hpp"
@@ -50,7 +48,8 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
                   const std::string& program) {
   const Scene scene(params);
   ForceField field(scene);
-  ImplicitEuler stepper(field, newton);  // resolves the automatic solver choice
+  const auto made = make_newton_stepper("implicit_euler", field, {newton});  // resolves the automatic solver choice
+  NewtonStepper& stepper = *made;
   run.out_dir = dir;
   run.progress = terminal_progress(program);
   RunResult result = simulate(stepper, run);
@@ -88,7 +87,8 @@ std::vector<double> stiff_step_residuals(const SceneParams& report_scene) {
   newton.treatment = StiffnessTreatment::exact;
   newton.tolerance = 1e-14;
   newton.max_iterations = 30;
-  ImplicitEuler stepper(field, newton);
+  const auto made = make_newton_stepper("implicit_euler", field, {newton});
+  NewtonStepper& stepper = *made;
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   stepper.step(0.01, x, v);  // if it fails the history still shows how far it got
   return stepper.residual_history();
@@ -141,7 +141,8 @@ IterationSummary iterations_per_step(const SceneParams& params, const RunSetting
                                      const std::string& path) {
   const Scene scene(params);
   ForceField field(scene);
-  ImplicitEuler stepper(field, newton);
+  const auto made = make_newton_stepper("implicit_euler", field, {newton});
+  NewtonStepper& stepper = *made;
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   OutputFile file(path);
   std::FILE* out = file.get();
@@ -276,17 +277,17 @@ void agreement_with_rk4(const SceneParams& report_scene, RunSettings run, const 
     if (r.status != RunStatus::ok) throw std::runtime_error(stepper.name() + " " + r.message);
     return r;
   };
-  ExplicitRungeKutta rk4(field, *find_method("rk4").tableau);
+  const auto rk4 = make_stepper("rk4", field);
   const double steps[2] = {1e-3, 5e-4};
-  const RunResult reference = run_with(rk4, steps[0]);
-  const RunResult rk4_half = run_with(rk4, steps[1]);
+  const RunResult reference = run_with(*rk4, steps[0]);
+  const RunResult rk4_half = run_with(*rk4, steps[1]);
   MarkdownTable table({"K = 200, D = 20, to t = 1 s", "largest position difference from RK4 at h = 0.001 [m]",
                        "Newton iterations per step"}, "lrr");
   const NewtonSettings exact = full_newton(newton, LinearSolverKind::automatic, StiffnessTreatment::exact);
   double distance[2];
   for (int k = 0; k < 2; ++k) {
-    ImplicitEuler implicit(field, exact);
-    const RunResult r = run_with(implicit, steps[k]);
+    const auto implicit = make_stepper("implicit_euler", field, {exact});
+    const RunResult r = run_with(*implicit, steps[k]);
     distance[k] = (r.x - reference.x).lpNorm<Eigen::Infinity>();
     table.add_row({"implicit Euler, h = " + format_number(steps[k]), format_number(distance[k], 3),
                    format_fixed(r.newton_iterations_per_step(), 2)});

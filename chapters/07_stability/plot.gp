@@ -97,3 +97,36 @@ do for [Dv in "0 20"] {
        for [k=1:4] M u (sel(meth[k], d) ? $1 : 1/0):(mid($4, $5)):($4 > 0 ? $4 : 1/0):($5 > 0 ? $5 : $4) w yerrorbars pt 7 ps 1.3 lc rgb col[k] t label[k]." measured"
 }
 unset multiplot
+
+# Chapter 9's diagonally implicit methods (regions.dat index 8 on, computed on a wider grid): each is stable
+# everywhere outside the closed curve (or right of the line) drawn, so the whole left half-plane is stable.
+reset
+set terminal pngcairo size 900,800 enhanced font "Sans,12"
+set contour base
+set cntrparam levels discrete 1.0
+unset surface
+set view map
+set table $Cmidpoint
+splot R index 8 using 1:2:3 with lines
+set table $Csdirk2
+splot R index 10 using 1:2:3 with lines
+set table $Csdirk3
+splot R index 11 using 1:2:3 with lines
+set table $Ctrbdf2
+splot R index 12 using 1:2:3 with lines
+unset table
+unset contour
+set surface
+set grid
+set size ratio -1
+set xlabel "Re z = Re(h {/Symbol l})"
+set ylabel "Im z = Im(h {/Symbol l})"
+set key outside bottom center horizontal maxrows 2
+set output plots.'/ch07_regions_implicit.png'
+set title "Implicit methods (Chapter 9): |R(z)| = 1 from each tableau; stable outside each curve"
+set xrange [-4:10]
+set yrange [-7:7]
+plot $Cmidpoint w l lw 2 lc rgb "#1f77b4" t "implicit midpoint = trapezoid: Re z = 0", \
+     $Csdirk2 w l lw 2 lc rgb "#2ca02c" t "SDIRK2", \
+     $Csdirk3 w l lw 2 lc rgb "#9467bd" t "SDIRK3", \
+     $Ctrbdf2 w l lw 2 dt 2 lc rgb "#8c564b" t "TR-BDF2"

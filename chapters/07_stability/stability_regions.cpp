@@ -19,6 +19,9 @@ StabilityModel stability_model(const std::string& method) {
     model.polynomial = cloth::stability_polynomial(*row.tableau);  // R(z) from A and b, never typed in
   } else if (row.name == "symplectic_euler") {
     model.kind = StabilityModel::Kind::symplectic_euler;
+  } else if (row.family == cloth::MethodFamily::implicit_runge_kutta && row.tableau && row.name != "implicit_euler") {
+    model.kind = StabilityModel::Kind::tableau;  // Chapter 9's DIRKs: R(z) from A and b as well
+    model.tableau = &*row.tableau;
   } else if (row.stability != nullptr) {
     model.kind = StabilityModel::Kind::closed_form;
     model.stability = row.stability;
@@ -38,6 +41,10 @@ double growth_factor(const StabilityModel& model, double h, const std::vector<Mo
     switch (model.kind) {
       case StabilityModel::Kind::symplectic_euler:
         worst = std::max(worst, cloth::symplectic_euler_amplification(h * mode[0], h * mode[1]));
+        break;
+      case StabilityModel::Kind::tableau:
+        for (const Complex& lambda : mode)
+          worst = std::max(worst, std::abs(cloth::stability_function(*model.tableau, h * lambda)));
         break;
       case StabilityModel::Kind::closed_form:
         for (const Complex& lambda : mode) worst = std::max(worst, std::abs(model.stability(h * lambda)));
@@ -61,6 +68,8 @@ std::vector<std::string> region_methods() {
   for (const cloth::Method* m : cloth::methods_of(cloth::MethodFamily::explicit_runge_kutta)) methods.push_back(m->name);
   methods.emplace_back("implicit_euler");
   methods.emplace_back("symplectic_euler");
+  for (const cloth::Method* m : cloth::methods_of(cloth::MethodFamily::implicit_runge_kutta))
+    if (m->tableau && m->name != "implicit_euler") methods.push_back(m->name);
   return methods;
 }
 
@@ -71,11 +80,13 @@ std::vector<std::pair<std::string, std::string>> stability_regions(const std::st
   cloth::OutputFile regions(dir + "/regions.dat");
   for (const std::string& method : region_methods()) {
     const StabilityModel model = stability_model(method);
+    // The implicit methods' regions are unbounded: their edges, where there are any, lie in the right half-plane.
+    const bool wide = model.kind == StabilityModel::Kind::tableau;
     std::fprintf(regions.get(), "# %s: Re z, Im z, |R(z)|\n", method.c_str());
     for (int i = 0; i <= 260; ++i) {
-      const double re = -4.0 + 6.5 * i / 260;
+      const double re = wide ? -4.0 + 14.0 * i / 260 : -4.0 + 6.5 * i / 260;
       for (int j = 0; j <= 240; ++j) {
-        const double im = -3.5 + 7.0 * j / 240;
+        const double im = wide ? -7.0 + 14.0 * j / 240 : -3.5 + 7.0 * j / 240;
         const Complex z(re, im);
         std::fprintf(regions.get(), "%.6g %.6g %.6g\n", re, im, std::min(growth_factor(model, 1.0, {Mode{z, std::conj(z)}}), 10.0));
       }
@@ -89,8 +100,8 @@ std::vector<std::pair<std::string, std::string>> stability_regions(const std::st
   std::printf("stability interval of each method along the negative real axis and the imaginary axis:\n");
   std::vector<std::pair<std::string, std::string>> summary;
   for (const std::string& method : region_methods()) {
-    if (method == "implicit_euler") continue;  // unbounded: A-stable
     const StabilityModel model = stability_model(method);
+    if (method == "implicit_euler" || model.kind == StabilityModel::Kind::tableau) continue;  // A-stable
     const auto stable_at = [&](Complex z) { return growth_factor(model, 1.0, {Mode{z, std::conj(z)}}) <= 1 + 1e-12; };
     const double real = cloth::stability_limit_along([&](double t) { return stable_at({-t, 0}); }, 10);
     const double imag = cloth::stability_limit_along([&](double t) { return stable_at({-1e-300, t}); }, 10);

@@ -20,11 +20,12 @@ using Mode = std::array<Complex, 2>;
 /// What linear stability theory needs of a method: R(z) as a polynomial for an explicit tableau (computed from
 /// A and b), the registry's closed-form R(z) for an implicit one, or symplectic Euler's 2 x 2 step matrix.
 struct StabilityModel {
-  enum class Kind { polynomial, closed_form, symplectic_euler };
+  enum class Kind { polynomial, closed_form, symplectic_euler, tableau };
   std::string method;
   Kind kind = Kind::polynomial;
   std::vector<double> polynomial;                   ///< r_0..r_s of R(z) = sum r_k z^k (polynomial)
   Complex (*stability)(Complex z) = nullptr;        ///< R(z) (closed_form)
+  const cloth::ButcherTableau* tableau = nullptr;   ///< R(z) = 1 + z b^T (I - zA)^-1 1 (tableau: implicit rows)
 };
 
 /// The model of a registered method (integrators/method_registry.hpp); throws cloth::InputError listing the
@@ -34,11 +35,12 @@ StabilityModel stability_model(const std::string& method);
 /// The largest factor by which one step of length h multiplies a mode (see the .cpp).
 double growth_factor(const StabilityModel& model, double h, const std::vector<Mode>& modes);
 
-/// The methods whose regions are drawn: every explicit Runge-Kutta method, implicit Euler and symplectic Euler.
+/// The methods whose regions are drawn: every explicit Runge-Kutta method, implicit Euler and symplectic Euler,
+/// then the other implicit Runge-Kutta methods with a tableau (Chapter 9).
 std::vector<std::string> region_methods();
 
 /// Writes regions.dat (|R(z)| on a grid of the z-plane, one gnuplot index block per method, in the order of
-/// region_methods()) and prints each region's reach along the negative real and the imaginary axis; returns
+/// region_methods(); Chapter 9's implicit methods on a wider grid, Re z up to 10) and prints each region's reach along the negative real and the imaginary axis; returns
 /// those reaches as summary entries.
 std::vector<std::pair<std::string, std::string>> stability_regions(const std::string& dir);
 

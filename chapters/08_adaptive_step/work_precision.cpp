@@ -96,6 +96,9 @@ int main(int argc, char** argv) {
   CommandLine cli("ch08_work_precision",
                   "Chapter 8: work-precision of the adaptive pairs against Boost.Odeint on the report's cloth.\n"
                   "--t-end is the horizon (default here 1 s); --K, --damping and the other scene flags apply.");
+  // The scene flags and the horizon; no --dt or --frames: every run chooses its own steps and records no frames.
+  cli.use_common({"--grid", "--spacing", "--mass", "--K", "--K-flexion", "--damping", "--damping-model", "--springs",
+                  "--pins", "--v0", "--t-end", "--out"});
   cli.add_switch("--quick", "a reduced sweep for the plots target (well under a minute)", [&] { quick = true; });
   cli.add_value("--runs", "N", "timed runs per point, the best is kept (default 5)",
                 [&](const std::string& s) { runs = static_cast<int>(parse_integer(s)); if (runs < 1) throw InputError("'" + s + "' is not a positive count"); });

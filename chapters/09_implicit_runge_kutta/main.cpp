@@ -4,19 +4,22 @@
 #include "program/command_line.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
-#include "integrators/bdf2.hpp"
-#include "integrators/explicit_runge_kutta.hpp"
+#include "base/text.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/implicit_step_control.hpp"
 #include "integrators/simulate.hpp"
+#include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
 #include "program/run_outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <memory>
 #include <optional>
+#include <sys/stat.h>
 #include <string>
 #include <vector>
 
@@ -33,17 +36,44 @@ const char* treatment_name(StiffnessTreatment t) {
   return "?";
 }
 
-// What the command line chose: a tableau or BDF2, Newton's settings, and step control.
+// What the command line chose: a registered implicit method or a tableau file, Newton's settings, step control.
 struct MethodChoice {
   std::string argument = "sdirk2";  // --tableau as given
-  bool bdf2 = false;
-  ImplicitTableau tableau;
+  const Method* row = nullptr;      // the registry's row, or nullptr for a tableau file
+  ImplicitTableau tableau;          // the tableau, for a Runge-Kutta method (empty for a multistep one)
   NewtonSettings newton;
   std::optional<double> tol;  // --tol: step control
+
+  [[nodiscard]] bool multistep() const { return row != nullptr && row->family == MethodFamily::multistep; }
 };
 
-std::unique_ptr<Stepper> make_method(const MethodChoice& choice, ForceField& field) {
-  if (choice.bdf2) return std::make_unique<Bdf2>(field, choice.newton);
+// A registered method by its name, or else a tableau file; the message lists the registered names.
+MethodChoice choose(const std::string& argument) {
+  MethodChoice choice;
+  choice.argument = argument;
+  std::string names;
+  for (const Method* m : newton_methods()) {
+    if (m->name == argument) choice.row = m;
+    names += (names.empty() ? "" : ", ") + m->name;
+  }
+  if (choice.row != nullptr) {
+    if (!choice.multistep()) choice.tableau = builtin_implicit_tableau(argument);
+    return choice;
+  }
+  struct stat info {};
+  if (::stat(argument.c_str(), &info) != 0)
+    throw InputError("--tableau: '" + escaped(argument) + "' is neither a registered implicit method (" + names +
+                     ") nor a readable tableau file");
+  try {
+    choice.tableau = read_implicit_tableau(argument);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--tableau: ") + e.what());
+  }
+  return choice;
+}
+
+std::unique_ptr<NewtonStepper> make_method(const MethodChoice& choice, ForceField& field) {
+  if (choice.row != nullptr) return make_newton_stepper(choice.row->name, field, {choice.newton});
   return std::make_unique<DiagonallyImplicitRungeKutta>(field, choice.tableau, choice.newton);
 }
 
@@ -51,8 +81,8 @@ std::unique_ptr<Stepper> make_method(const MethodChoice& choice, ForceField& fie
 std::vector<std::pair<std::string, std::string>> method_lines(const MethodChoice& choice, const Stepper& stepper,
                                                               const RunResult& result, const NewtonSettings& newton) {
   std::vector<std::pair<std::string, std::string>> lines;
-  if (choice.bdf2) {
-    lines.emplace_back("tableau", "bdf2 (multistep)");
+  if (choice.multistep()) {
+    lines.emplace_back("tableau", choice.row->name + " (multistep)");
     lines.emplace_back("order", "2");
   } else {
     lines.emplace_back("tableau", choice.tableau.method.name);
@@ -76,7 +106,7 @@ int run_cloth(const SceneParams& params, const RunSettings& run, const MethodCho
   const Scene scene(params);
   validate(choice.newton, scene);  // before anything is written
   ForceField field(scene);
-  const std::unique_ptr<Stepper> stepper = make_method(choice, field);
+  const std::unique_ptr<NewtonStepper> stepper = make_method(choice, field);
   prepare_outputs(run.out_dir, run_output_names());
   RunResult result;
   std::vector<std::pair<std::string, std::string>> extra;
@@ -84,7 +114,7 @@ int run_cloth(const SceneParams& params, const RunSettings& run, const MethodCho
     StepControl control;
     control.tolerance = *choice.tol;
     ControlledRun controlled =
-        simulate_controlled(static_cast<DiagonallyImplicitRungeKutta&>(*stepper), run, control);
+        simulate_controlled(dynamic_cast<DiagonallyImplicitRungeKutta&>(*stepper), run, control);
     result = std::move(controlled.result);
     extra = method_lines(choice, *stepper, result, choice.newton);
     extra.emplace_back("tol", format_number(*choice.tol, 10));
@@ -108,21 +138,14 @@ int run_cloth(const SceneParams& params, const RunSettings& run, const MethodCho
   return status;
 }
 
-// The methods the studies compare: every built-in tableau and BDF2, with full Newton.
+// The methods the studies compare: every registered method StageNewton solves, in the registry's order.
 std::vector<MethodChoice> study_methods(const NewtonSettings& newton) {
   std::vector<MethodChoice> methods;
-  for (const ImplicitTableau& t : builtin_implicit_tableaus()) {
-    MethodChoice m;
-    m.argument = t.method.name;
-    m.tableau = t;
-    m.newton = newton;
-    methods.push_back(m);
+  for (const Method* m : newton_methods()) {
+    MethodChoice choice = choose(m->name);
+    choice.newton = newton;
+    methods.push_back(choice);
   }
-  MethodChoice b;
-  b.argument = "bdf2";
-  b.bdf2 = true;
-  b.newton = newton;
-  methods.push_back(b);
   return methods;
 }
 
@@ -130,13 +153,18 @@ std::vector<MethodChoice> study_methods(const NewtonSettings& newton) {
 // Every method on the undamped cloth (D = 0) at the run's h to its T: energy.dat per method in its own folder,
 // and energy_summary.dat with E(T) / E(0) and the work.
 void energy_study(const Options& opt, const NewtonSettings& newton, const std::string& dir,
-                  const std::string& program) {
+                  const std::string& program, const std::string& command) {
   SceneParams p = opt.scene;
   p.damping = 0;
   OutputFile summary(dir + "/energy_summary.dat");
   std::fprintf(summary.get(), "# undamped cloth, K = %g, h = %g s, T = %g s\n# method E(T)/E(0) min_E/E(0) "
                "max_E/E(0) newton_iterations factorizations wall_seconds\n", p.stiffness, opt.run.dt, opt.run.t_end);
-  for (const MethodChoice& m : study_methods(newton)) {
+  NewtonSettings kept = newton;
+  kept.variant = NewtonVariant::modified;  // converged to the same tolerance as full Newton, at a fraction of the cost
+  const std::string scene = std::string("undamped cloth, h = ") + format_number(opt.run.dt) + " s, T = " +
+                            format_number(opt.run.t_end) + " s";
+  MarkdownTable table({scene, "E(T) / E(0)", "smallest E / E(0)", "largest E / E(0)"}, "lrrr");
+  for (const MethodChoice& m : study_methods(kept)) {
     RunSettings run = opt.run;
     run.out_dir = dir + "/energy_" + m.argument;
     RunResult r;
@@ -147,8 +175,11 @@ void energy_study(const Options& opt, const NewtonSettings& newton, const std::s
     std::fprintf(summary.get(), "%s %.6f %.6f %.6f %lld %lld %.4f\n", m.argument.c_str(),
                  r.energy.back().energy.total() / E0, lo / E0, hi / E0, r.counters.newton_iterations,
                  r.counters.factorizations, r.wall_seconds);
+    table.add_row({m.row->title, format_fixed(r.energy.back().energy.total() / E0, 5), format_fixed(lo / E0, 5),
+                   format_fixed(hi / E0, 5)});
   }
   summary.commit();
+  write_table_fragment(dir + "/energy_summary.md", table, command);
 }
 // [energy_study]
 
@@ -157,24 +188,32 @@ void energy_study(const Options& opt, const NewtonSettings& newton, const std::s
 Vector reference_positions(const SceneParams& p, double T, double h_ref) {
   const Scene scene(p);
   ForceField field(scene);
-  ExplicitRungeKutta rk4(field, tableau_from_argument("rk4"));
+  const auto rk4 = make_stepper("rk4", field);
   RunSettings run;
   run.dt = h_ref;
   run.t_end = T;
-  const RunResult r = simulate(rk4, run, false);
+  const RunResult r = simulate(*rk4, run, false);
   if (r.status != RunStatus::ok) throw InputError("the RK4 reference failed: " + r.message);
   return r.x;
 }
 
+// One run of the accuracy studies, for the page's tables.
+struct StudyRun {
+  std::string title;
+  NewtonVariant variant;
+  double h, error, seconds;
+  long long factorizations;
+};
+
 // [work_precision]
-// Each method at the steps `hs` on `p` to T: the largest position error at T against `reference`, the wall time
-// (best of `repeats`), and the work; one line per run in `path`, one gnuplot index per method and variant.
+// Each method at the steps `hs` on `p` to T: the largest position error at T against `reference`, the processor
+// time (best of `repeats`), and the work; one line per run in `path`, one gnuplot index per method and variant.
 void work_precision(const SceneParams& p, double T, const std::vector<double>& hs, const Vector& reference,
                     const NewtonSettings& newton, const std::vector<NewtonVariant>& variants, const std::string& path,
-                    int repeats) {
+                    int repeats, const std::vector<std::string>& only = {}, std::vector<StudyRun>* runs = nullptr) {
   OutputFile out(path);
   std::fprintf(out.get(), "# K = %g, D = %g, T = %g s; error = max |x - x_ref| over the free particles [m]\n"
-               "# method newton h error wall_seconds newton_iterations factorizations rhs_evaluations\n",
+               "# method newton h error processor_seconds newton_iterations factorizations rhs_evaluations\n",
                p.stiffness, p.damping, T);
   const Scene scene(p);
   ForceField field(scene);
@@ -182,6 +221,7 @@ void work_precision(const SceneParams& p, double T, const std::vector<double>& h
     NewtonSettings s = newton;
     s.variant = variant;
     for (const MethodChoice& m : study_methods(s)) {
+      if (!only.empty() && std::find(only.begin(), only.end(), m.argument) == only.end()) continue;
       for (const double h : hs) {
         RunSettings run;
         run.dt = h;
@@ -189,12 +229,14 @@ void work_precision(const SceneParams& p, double T, const std::vector<double>& h
         double best = INFINITY;
         RunResult r;
         for (int k = 0; k < repeats; ++k) {
-          const std::unique_ptr<Stepper> stepper = make_method(m, field);
+          const std::unique_ptr<NewtonStepper> stepper = make_method(m, field);
+          const std::clock_t start = std::clock();  // processor time: the machine's other work does not count
           r = simulate(*stepper, run, false);
-          best = std::min(best, r.wall_seconds);
+          best = std::min(best, static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
         }
         const double error =
             r.status == RunStatus::ok ? (r.x - reference).lpNorm<Eigen::Infinity>() : NAN;
+        if (runs) runs->push_back({m.row->title, variant, h, error, best, r.counters.factorizations});
         std::fprintf(out.get(), "%s %s %.6g %.6e %.6f %lld %lld %lld\n", m.argument.c_str(),
                      newton_variant_name(variant), h, error, best, r.counters.newton_iterations,
                      r.counters.factorizations, r.counters.rhs_evaluations);
@@ -209,14 +251,15 @@ void work_precision(const SceneParams& p, double T, const std::vector<double>& h
 
 // The chapter's studies: energy on the undamped cloth; observed orders on (200, 20) over T = 0.4 s; work against
 // precision on the stiff cloth (5000, 20). --quick keeps the plots target fast (fewer steps, one timing).
-void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, const std::string& program) {
+void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, const std::string& program,
+                 const std::string& command) {
   const std::string dir = opt.run.out_dir;
   // Every output of the studies, checked before the first run starts (a folder in the way is bad input).
   std::vector<std::string> outputs = {"energy_summary.dat", "orders.dat", "work_precision.dat"};
   for (const MethodChoice& m : study_methods(newton))
     for (const std::string& name : run_output_names()) outputs.push_back("energy_" + m.argument + "/" + name);
   prepare_outputs(dir, outputs);
-  energy_study(opt, newton, dir, program);
+  energy_study(opt, newton, dir, program, command);
 
   SceneParams report = opt.scene;
   report.stiffness = 200;
@@ -226,13 +269,42 @@ void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, c
                                        : std::vector<double>{0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125};
   NewtonSettings tight = newton;
   tight.tolerance = 1e-12;  // Newton's error far below the truncation error: the orders are the methods'
-  work_precision(report, T, hs, reference_positions(report, T, 1e-5), tight, {NewtonVariant::full},
-                 dir + "/orders.dat", 1);
+  // RK4 at h = 2e-5: its error (order 4) is below 1e-9 m here, far below every implicit method's.
+  std::vector<StudyRun> orders;
+  work_precision(report, T, hs, reference_positions(report, T, 2e-5), tight, {NewtonVariant::modified},
+                 dir + "/orders.dat", 1, {}, &orders);
+  // The observed order between consecutive steps, log2(e(2h) / e(h)), for each method (runs come h-descending).
+  std::vector<std::string> header = {"(K, D) = (200, 20), T = 0.4 s"};
+  for (const double h : hs) header.push_back(std::string("error at h = ") + format_number(h) + " [m]");
+  header.emplace_back("observed order");
+  std::string alignment(header.size(), 'r');  // the method's name left, the numbers right
+  alignment[0] = 'l';
+  MarkdownTable order_table(header, alignment);
+  for (std::size_t k = 0; k + hs.size() <= orders.size(); k += hs.size()) {
+    std::vector<std::string> row = {orders[k].title};
+    for (std::size_t j = 0; j < hs.size(); ++j) row.push_back(format_number(orders[k + j].error, 2));
+    const StudyRun& coarse = orders[k + hs.size() - 2];
+    const StudyRun& fine = orders[k + hs.size() - 1];
+    row.push_back(format_fixed(std::log(coarse.error / fine.error) / std::log(coarse.h / fine.h), 2));
+    order_table.add_row(row);
+  }
+  write_table_fragment(dir + "/orders.md", order_table, command);
 
   SceneParams stiff = report;
   stiff.stiffness = 5000;
-  work_precision(stiff, T, hs, reference_positions(stiff, T, 1e-5), newton,
-                 {NewtonVariant::full, NewtonVariant::modified}, dir + "/work_precision.dat", quick ? 1 : 3);
+  // The figure shows the L-stable methods and BDF2; the others fail at the large steps (see the page).
+  std::vector<StudyRun> stiff_runs;
+  work_precision(stiff, T, hs, reference_positions(stiff, T, 2e-5), newton,
+                 {NewtonVariant::full, NewtonVariant::modified}, dir + "/work_precision.dat", quick ? 1 : 3,
+                 {"implicit_euler", "sdirk2", "sdirk3", "bdf2"}, &stiff_runs);
+  // Full against modified Newton at the smallest step, where every method converges.
+  const std::string stiff_scene = std::string("(K, D) = (5000, 20), T = 0.4 s, h = ") + format_number(hs.back()) + " s";
+  MarkdownTable work_table({stiff_scene, "Newton", "error [m]", "time [s]", "factorizations"}, "llrrr");
+  for (const StudyRun& r : stiff_runs)
+    if (r.h == hs.back())
+      work_table.add_row({r.title, newton_variant_name(r.variant), format_number(r.error, 2),
+                          format_number(r.seconds, 2), std::to_string(r.factorizations)});
+  write_table_fragment(dir + "/work_precision.md", work_table, command);
 }
 
 }  // namespace
@@ -247,10 +319,11 @@ int main(int argc, char** argv) {
                   "Chapter 9: a diagonally implicit Runge-Kutta method from its Butcher tableau, or BDF2, on the\n"
                   "report's cloth; each stage solved by Newton's method on M - h a_ii df/dv - (h a_ii)^2 df/dx.");
   std::string names;
-  for (const ImplicitTableau& t : builtin_implicit_tableaus()) names += t.method.name + ", ";
-  cli.add_value("--tableau", "NAME|FILE|bdf2",
-                "a built-in diagonally implicit tableau (" + names + "default sdirk2), a tableau file, or bdf2",
-                [&](const std::string& s) { choice.argument = s; });
+  for (const Method* m : newton_methods()) names += m->name + ", ";
+  std::string tableau_argument = "sdirk2";
+  cli.add_value("--tableau", "NAME|FILE",
+                "a registered implicit method (" + names + "default sdirk2) or a diagonally implicit tableau file",
+                [&](const std::string& s) { tableau_argument = s; });
   cli.add_value("--tol", "TOL",
                 "step control on the embedded error estimate, max |e| / (1 + |y|) <= TOL (embedded pairs only: "
                 "trbdf2); --dt is then the first step",
@@ -308,16 +381,14 @@ int main(int argc, char** argv) {
                  [&] { quick = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    if (choice.argument == "bdf2") {
-      choice.bdf2 = true;
-    } else {
-      try {
-        choice.tableau = implicit_tableau_from_argument(choice.argument);
-      } catch (const InputError& e) {
-        throw InputError(std::string("--tableau: ") + e.what() + "; bdf2 names the multistep method");
-      }
+    {
+      const NewtonSettings newton = choice.newton;
+      const std::optional<double> tol = choice.tol;
+      choice = choose(tableau_argument);
+      choice.newton = newton;
+      choice.tol = tol;
     }
-    if (choice.tol && (choice.bdf2 || !choice.tableau.has_embedded()))
+    if (choice.tol && (choice.multistep() || !choice.tableau.has_embedded()))
       throw InputError("--tol: step control needs an embedded pair, and " + choice.argument +
                        " has no embedded weights: use --tableau trbdf2, or leave --tol out for fixed steps");
     if (variant) choice.newton.variant = *variant;
@@ -339,7 +410,7 @@ int main(int argc, char** argv) {
     const long long particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
     require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles));
     if (want_report_runs) {
-      report_runs(opt, choice.newton, quick, cli.program());
+      report_runs(opt, choice.newton, quick, cli.program(), reader_command(argc, argv));
       return 0;
     }
     return run_cloth(opt.scene, opt.run, choice, cli.program());

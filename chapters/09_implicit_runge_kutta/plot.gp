@@ -5,11 +5,11 @@ set terminal pngcairo size 900,600 enhanced font "Sans,12"
 set grid
 
 set output plots.'/ch09_energy.png'
-set title "Undamped 20 x 20 cloth (K = 50, D = 0), h = 0.01 s, full Newton"
+set title "Undamped 20 x 20 cloth (K = 50, D = 0), h = 0.01 s"
 set xlabel "time t [s]"
 set ylabel "total energy E [J]"
 set key bottom left
-plot data.'/energy_backward_euler/energy.dat'    using 1:5 with lines lw 2 lc rgb "#d62728" title "backward Euler", \
+plot data.'/energy_implicit_euler/energy.dat'    using 1:5 with lines lw 2 lc rgb "#d62728" title "implicit Euler", \
      data.'/energy_bdf2/energy.dat'              using 1:5 with lines lw 2 lc rgb "#ff7f0e" title "BDF2", \
      data.'/energy_sdirk2/energy.dat'            using 1:5 with lines lw 2 lc rgb "#2ca02c" title "SDIRK2", \
      data.'/energy_trbdf2/energy.dat'            using 1:5 with lines lw 2 dt 2 lc rgb "#8c564b" title "TR-BDF2", \
@@ -25,8 +25,9 @@ set logscale xy
 set format x "10^{%T}"
 set format y "10^{%T}"
 set key bottom right
-# orders.dat: one index per method (0..6), full Newton; work_precision.dat: the same, then modified (7..13).
-plot data.'/orders.dat' index 0 using 3:4 with linespoints lw 2 pt 7 lc rgb "#d62728" title "backward Euler", \
+# orders.dat: one index per method (0..6, the registry's order); work_precision.dat: implicit Euler, SDIRK2,
+# SDIRK3, BDF2 with full Newton (0..3), then the same with modified Newton (4..7).
+plot data.'/orders.dat' index 0 using 3:4 with linespoints lw 2 pt 7 lc rgb "#d62728" title "implicit Euler", \
      data.'/orders.dat' index 1 using 3:4 with linespoints lw 2 pt 5 lc rgb "#1f77b4" title "implicit midpoint", \
      data.'/orders.dat' index 2 using 3:4 with linespoints lw 2 pt 4 lc rgb "#17becf" title "trapezoid", \
      data.'/orders.dat' index 3 using 3:4 with linespoints lw 2 pt 9 lc rgb "#2ca02c" title "SDIRK2", \
@@ -37,13 +38,13 @@ plot data.'/orders.dat' index 0 using 3:4 with linespoints lw 2 pt 7 lc rgb "#d6
 set output plots.'/ch09_work_precision.png'
 set title "Stiff cloth (K, D) = (5000, 20), T = 0.4 s: full Newton (solid), modified (dashed)"
 set xlabel "max |x - x_{ref}| [m]"
-set ylabel "wall time [s]"
+set ylabel "processor time [s]"
 set key top right
-plot data.'/work_precision.dat' index 0 using 4:5 with linespoints lw 2 pt 7 lc rgb "#d62728" title "backward Euler", \
-     data.'/work_precision.dat' index 3 using 4:5 with linespoints lw 2 pt 9 lc rgb "#2ca02c" title "SDIRK2", \
-     data.'/work_precision.dat' index 4 using 4:5 with linespoints lw 2 pt 11 lc rgb "#9467bd" title "SDIRK3", \
-     data.'/work_precision.dat' index 6 using 4:5 with linespoints lw 2 pt 3 lc rgb "#ff7f0e" title "BDF2", \
-     data.'/work_precision.dat' index 7 using 4:5 with linespoints lw 2 dt 2 pt 6 lc rgb "#d62728" notitle, \
-     data.'/work_precision.dat' index 10 using 4:5 with linespoints lw 2 dt 2 pt 8 lc rgb "#2ca02c" notitle, \
-     data.'/work_precision.dat' index 11 using 4:5 with linespoints lw 2 dt 2 pt 10 lc rgb "#9467bd" notitle, \
-     data.'/work_precision.dat' index 13 using 4:5 with linespoints lw 2 dt 2 pt 2 lc rgb "#ff7f0e" notitle
+plot data.'/work_precision.dat' index 0 using 4:5 with linespoints lw 2 pt 7 lc rgb "#d62728" title "implicit Euler", \
+     data.'/work_precision.dat' index 1 using 4:5 with linespoints lw 2 pt 9 lc rgb "#2ca02c" title "SDIRK2", \
+     data.'/work_precision.dat' index 2 using 4:5 with linespoints lw 2 pt 11 lc rgb "#9467bd" title "SDIRK3", \
+     data.'/work_precision.dat' index 3 using 4:5 with linespoints lw 2 pt 3 lc rgb "#ff7f0e" title "BDF2", \
+     data.'/work_precision.dat' index 4 using 4:5 with linespoints lw 2 dt 2 pt 6 lc rgb "#d62728" notitle, \
+     data.'/work_precision.dat' index 5 using 4:5 with linespoints lw 2 dt 2 pt 8 lc rgb "#2ca02c" notitle, \
+     data.'/work_precision.dat' index 6 using 4:5 with linespoints lw 2 dt 2 pt 10 lc rgb "#9467bd" notitle, \
+     data.'/work_precision.dat' index 7 using 4:5 with linespoints lw 2 dt 2 pt 2 lc rgb "#ff7f0e" notitle

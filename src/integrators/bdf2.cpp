@@ -3,17 +3,13 @@
 
 namespace cloth {
 
-Bdf2::Bdf2(ForceField& field, NewtonSettings settings) : Stepper(field), newton_(field, settings, counters_) {
+Bdf2::Bdf2(ForceField& field, NewtonSettings settings) : NewtonStepper(field, settings) {
   const int n = field.dof_count();
   x_previous_.resize(n), v_previous_.resize(n), x_last_.resize(n), v_last_.resize(n);
   x_tilde_.resize(n), v_tilde_.resize(n), V_.resize(n);
 }
 
-std::string Bdf2::name() const {
-  return std::string("bdf2_") +
-         newton_variant_name(settings().one_iteration() ? NewtonVariant::one : settings().variant) + "_" +
-         linear_solver_name(settings().solver);
-}
+std::string Bdf2::name() const { return "bdf2"; }
 
 bool Bdf2::step(double h, Vector& x, Vector& v) {
   newton_.begin_step();

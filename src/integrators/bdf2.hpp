@@ -3,7 +3,7 @@
 // cloth.
 #pragma once
 
-#include "integrators/stage_newton.hpp"
+#include "integrators/newton_stepper.hpp"
 
 #include <string>
 
@@ -15,15 +15,13 @@ namespace cloth {
 /// the implicit Euler equation from (x~, v~) with gamma for h. A multistep method needs a past: the first step,
 /// and any step after the state or h changed under it, is one backward Euler step (its local error O(h^2) costs
 /// the second order nothing globally).
-class Bdf2 final : public Stepper {
+class Bdf2 final : public NewtonStepper {
  public:
   Bdf2(ForceField& field, NewtonSettings settings);
   [[nodiscard]] std::string name() const override;
   bool step(double h, Vector& x, Vector& v) override;
-  [[nodiscard]] const NewtonSettings& settings() const { return newton_.settings(); }
 
  private:
-  StageNewton newton_;
   Vector x_previous_, v_previous_;  // y_{n-1}
   Vector x_last_, v_last_;          // y_n as this stepper left it, to notice a state it did not produce
   Vector x_tilde_, v_tilde_, V_;

@@ -98,10 +98,8 @@ void validate(const ButcherTableau& t) {
   }
 }
 
-namespace {
-
 // A number as a decimal or a fraction p/q, so that tableaus can be written as exactly as they are printed.
-bool parse_entry(const std::string& token, double& value) {
+bool parse_tableau_entry(const std::string& token, double& value) {
   const auto slash = token.find('/');
   const auto number = [](const std::string& s, double& out) {
     if (s.empty()) return false;
@@ -115,8 +113,6 @@ bool parse_entry(const std::string& token, double& value) {
   value = p / q;
   return true;
 }
-
-}  // namespace
 
 ButcherTableau parse_tableau_entries(const std::string& text, const std::string& source_name) {
   const std::string source = escaped(source_name);
@@ -169,7 +165,7 @@ ButcherTableau parse_tableau_entries(const std::string& text, const std::string&
       std::istringstream entries(weights ? line.substr(line.find(first) + first.size()) : line);
       while (entries >> token) {
         double value = 0;
-        if (!parse_entry(token, value)) fail("'" + token + "' is not a number (write decimals or fractions p/q)");
+        if (!parse_tableau_entry(token, value)) fail("'" + token + "' is not a number (write decimals or fractions p/q)");
         values.push_back(value);
       }
       if (first == "b") {

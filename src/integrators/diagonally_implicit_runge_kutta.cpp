@@ -5,13 +5,14 @@ namespace cloth {
 
 DiagonallyImplicitRungeKutta::DiagonallyImplicitRungeKutta(ForceField& field, ImplicitTableau tableau,
                                                            NewtonSettings settings)
-    : Stepper(field), tableau_(std::move(tableau)), newton_(field, settings, counters_) {
+    : NewtonStepper(field, settings), tableau_(std::move(tableau)) {
   validate(tableau_);
   const int s = tableau_.method.stages();
   const int n = field.dof_count();
   V_.assign(static_cast<std::size_t>(s), Vector::Zero(n));
   F_.assign(static_cast<std::size_t>(s), Vector::Zero(n));
   x_tilde_.resize(n), v_tilde_.resize(n);
+  last_force_.resize(n), x_last_.resize(n), v_last_.resize(n);
   if (tableau_.has_embedded()) error_x_ = Vector::Zero(n), error_v_ = Vector::Zero(n);
   // F_i is needed when a later stage uses it, when the weights combine it (a stiffly accurate method takes the
   // last stage instead), or when the embedded weights do. Otherwise its evaluation is skipped.
@@ -19,22 +20,23 @@ DiagonallyImplicitRungeKutta::DiagonallyImplicitRungeKutta(ForceField& field, Im
   for (int i = 0; i < s; ++i) {
     bool used = !tableau_.stiffly_accurate() && tableau_.method.b[i] != 0.0;
     for (int j = i + 1; j < s; ++j) used = used || A(j, i) != 0.0;
-    if (tableau_.has_embedded()) used = used || tableau_.b_hat[i] != tableau_.method.b[i];
+    if (tableau_.has_embedded()) used = used || tableau_.method.b_hat[i] != tableau_.method.b[i];
     need_force_.push_back(used);
   }
 }
 
-std::string DiagonallyImplicitRungeKutta::name() const {
-  return tableau_.method.name + "_" + newton_variant_name(settings().one_iteration() ? NewtonVariant::one
-                                                                                      : settings().variant) +
-         "_" + linear_solver_name(settings().solver);
-}
+// The tableau's name, as the registry's row: the Newton variant and the solver are settings, written beside it.
+std::string DiagonallyImplicitRungeKutta::name() const { return tableau_.method.name; }
 
 bool DiagonallyImplicitRungeKutta::step(double h, Vector& x, Vector& v) {
   const ButcherTableau& t = tableau_.method;
   const int s = t.stages();
   const double m = field_.scene().params().mass;
   newton_.begin_step();
+  // The force the first implicit stage's guess starts from: the last one of the step before, if this step
+  // continues it (a state set from outside, or a first step, has none).
+  const Vector* latest_force = have_last_force_ && x == x_last_ && v == v_last_ ? &last_force_ : nullptr;
+  const bool forces_free = !settings().one_iteration();  // Newton's last residual evaluated f(X_i, V_i)
   // [dirk_stages]
   for (int i = 0; i < s; ++i) {
     const auto si = static_cast<std::size_t>(i);
@@ -54,25 +56,31 @@ bool DiagonallyImplicitRungeKutta::step(double h, Vector& x, Vector& v) {
       if (need_force_[si] || i + 1 == s) {
         field_.forces(x_tilde_, V_[si], F_[si]);
         ++counters_.rhs_evaluations;
+        latest_force = &F_[si];
       }
       continue;
     }
-    // The guess: the previous stage's velocity (v0 for the first stage).
-    if (i > 0) V_[si] = V_[si - 1];
-    else V_[si] = v;
+    // The guess (the predictor): the stage equation M (V - v~) = gamma f with the latest known force for f,
+    // which is off by gamma times the change of the force since then, O(h^2); without one, v~ itself.
+    if (latest_force != nullptr) V_[si] = v_tilde_ + (gamma / m) * *latest_force;
+    else V_[si] = v_tilde_;
     if (!newton_.solve(x_tilde_, v_tilde_, gamma, V_[si], need_force_[si])) {
       failure_ = newton_.failure();
       if (s > 1) failure_.reason = "stage " + std::to_string(i + 1) + ": " + failure_.reason;
+      have_last_force_ = false;
       return false;
     }
-    if (need_force_[si]) F_[si] = newton_.force();
+    if (need_force_[si] || forces_free) {
+      F_[si] = newton_.force();
+      latest_force = &F_[si];
+    }
   }
   // [dirk_stages]
   if (tableau_.has_embedded()) {
     error_x_.setZero();
     error_v_.setZero();
     for (int i = 0; i < s; ++i) {
-      const double e = t.b[i] - tableau_.b_hat[i];
+      const double e = t.b[i] - t.b_hat[i];
       if (e == 0.0) continue;
       error_x_ += (h * e) * V_[static_cast<std::size_t>(i)];
       error_v_ += (h * e / m) * F_[static_cast<std::size_t>(i)];
@@ -91,6 +99,12 @@ bool DiagonallyImplicitRungeKutta::step(double h, Vector& x, Vector& v) {
       x += (h * b) * V_[static_cast<std::size_t>(i)];
       v += (h * b / m) * F_[static_cast<std::size_t>(i)];
     }
+  }
+  have_last_force_ = latest_force != nullptr;
+  if (have_last_force_) {
+    last_force_ = *latest_force;
+    x_last_ = x;
+    v_last_ = v;
   }
   ++counters_.steps;
   return true;

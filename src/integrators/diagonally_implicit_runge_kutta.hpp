@@ -3,7 +3,7 @@
 #pragma once
 
 #include "integrators/implicit_tableaus.hpp"
-#include "integrators/stage_newton.hpp"
+#include "integrators/newton_stepper.hpp"
 
 #include <string>
 #include <vector>
@@ -15,8 +15,9 @@ namespace cloth {
 /// and its velocity solves M (V_i - v~_i) = h a_ii f(X_i, V_i), v~_i = v0 + h M^{-1} sum_{j<i} a_ij F_j, with
 /// F_j = f(X_j, V_j): the implicit Euler equation of Chapter 4 with h a_ii for h, started from (x~_i, v~_i). The
 /// step is x1 = x0 + h sum_i b_i V_i, v1 = v0 + h M^{-1} sum_i b_i F_i, or the last stage when the tableau is
-/// stiffly accurate.
-class DiagonallyImplicitRungeKutta : public Stepper {
+/// stiffly accurate. Newton starts each stage from V_i = v~_i + h a_ii M^{-1} F, F the latest stage force known
+/// (of this step, or the last one of the step before): the stage equation with a known force in place of its own.
+class DiagonallyImplicitRungeKutta : public NewtonStepper {
  public:
   /// The tableau must pass validate(ImplicitTableau); the settings validate(NewtonSettings). Throws InputError.
   DiagonallyImplicitRungeKutta(ForceField& field, ImplicitTableau tableau, NewtonSettings settings);
@@ -24,11 +25,6 @@ class DiagonallyImplicitRungeKutta : public Stepper {
   bool step(double h, Vector& x, Vector& v) override;
 
   [[nodiscard]] const ImplicitTableau& tableau() const { return tableau_; }
-  [[nodiscard]] const NewtonSettings& settings() const { return newton_.settings(); }
-  /// |r|_inf of the last stage equation solved (each Newton iteration, then after its last update).
-  [[nodiscard]] const std::vector<double>& residual_history() const { return newton_.residual_history(); }
-  [[nodiscard]] const StageNewton::Timing& timing() const { return newton_.timing(); }
-  void reset_timing() { newton_.reset_timing(); }
 
   /// For an embedded pair, after a step: the difference between the step and its embedded companion, in
   /// positions and velocities (h sum_i (b_i - b^_i) V_i and h M^{-1} sum_i (b_i - b^_i) F_i).
@@ -37,10 +33,13 @@ class DiagonallyImplicitRungeKutta : public Stepper {
 
  private:
   ImplicitTableau tableau_;
-  StageNewton newton_;
   std::vector<Vector> V_, F_;   // stage velocities and forces
   std::vector<bool> need_force_;  // whether F_i is used (by a later stage or the weights)
   Vector x_tilde_, v_tilde_, error_x_, error_v_;
+  // The predictor's force: the last stage force of the step before, when the step continues the state that step
+  // produced (x_last_, v_last_); f(x1, v1) itself for a stiffly accurate method.
+  Vector last_force_, x_last_, v_last_;
+  bool have_last_force_ = false;
 };
 
 }  // namespace cloth

@@ -3,6 +3,7 @@
 #include "integrators/embedded_runge_kutta.hpp"
 
 #include "base/input_error.hpp"
+#include "integrators/explicit_stage.hpp"
 
 namespace cloth {
 
@@ -68,21 +69,7 @@ void EmbeddedRungeKutta::attempt(double h, const Vector& x, const Vector& v) {
     const bool last_is_candidate = fsal_ && i == s - 1;
     Vector& Xi = last_is_candidate ? x_new_ : stage_x_;
     Vector& Vi = last_is_candidate ? v_new_ : stage_v_[static_cast<std::size_t>(i)];
-    bool formed = false;
-    for (int j = 0; j < i; ++j) {
-      if (A(i, j) == 0.0) continue;
-      const double ha = h * A(i, j);
-      const Vector& Vj = *V_[static_cast<std::size_t>(j)];
-      const Vector& aj = stage_a_[static_cast<std::size_t>(j)];
-      if (!formed) {
-        Xi.noalias() = x + ha * Vj;
-        Vi.noalias() = v + ha * aj;
-        formed = true;
-      } else {
-        Xi.noalias() += ha * Vj;
-        Vi.noalias() += ha * aj;
-      }
-    }
+    const bool formed = form_explicit_stage(A, i, h, x, v, V_, stage_a_, Xi, Vi);
     V_[static_cast<std::size_t>(i)] = formed ? &Vi : &v;
     field_.acceleration(formed ? Xi : x, formed ? Vi : v, stage_a_[static_cast<std::size_t>(i)]);
   }

@@ -2,6 +2,8 @@
 // stages with b.
 #include "integrators/explicit_runge_kutta.hpp"
 
+#include "integrators/explicit_stage.hpp"
+
 namespace cloth {
 
 ExplicitRungeKutta::ExplicitRungeKutta(ForceField& field, ButcherTableau tableau)
@@ -30,25 +32,10 @@ bool ExplicitRungeKutta::step(double h, Vector& x, Vector& v) {
   const int s = tableau_.stages();
   // [rk_stage_loop]
   for (int i = 0; i < s; ++i) {
-    // X_i = x + h sum_{j<i} a_ij V_j,  V_i = v + h sum_{j<i} a_ij a_j. Zero a_ij cost nothing; the first nonzero
-    // one is added as the stage vectors are formed (one pass, not a copy and then a pass), and a stage with none
-    // (the first, always) evaluates at (x, v) itself, with no copy at all.
+    // X_i = x + h sum_{j<i} a_ij V_j,  V_i = v + h sum_{j<i} a_ij a_j; a stage whose row of A is zero (the first,
+    // always) evaluates at (x, v) itself.
     Vector& Vi = stage_v_[static_cast<std::size_t>(i)];
-    bool formed = false;
-    for (int j = 0; j < i; ++j) {
-      if (A(i, j) == 0.0) continue;
-      const double ha = h * A(i, j);
-      const Vector& Vj = *V_[static_cast<std::size_t>(j)];
-      const Vector& aj = stage_a_[static_cast<std::size_t>(j)];
-      if (!formed) {
-        stage_x_.noalias() = x + ha * Vj;
-        Vi.noalias() = v + ha * aj;
-        formed = true;
-      } else {
-        stage_x_.noalias() += ha * Vj;
-        Vi.noalias() += ha * aj;
-      }
-    }
+    const bool formed = form_explicit_stage(A, i, h, x, v, V_, stage_a_, stage_x_, Vi);
     V_[static_cast<std::size_t>(i)] = formed ? &Vi : &v;
     field_.acceleration(formed ? stage_x_ : x, formed ? Vi : v, stage_a_[static_cast<std::size_t>(i)]);
   }

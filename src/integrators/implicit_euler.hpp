@@ -6,16 +6,13 @@
 
 #include "integrators/diagonally_implicit_runge_kutta.hpp"
 
-#include <string>
-
 namespace cloth {
 
-/// The backward_euler tableau on the stage machinery, under the name the method registry gives it
-/// ("implicit_euler"); the Newton variant and the solver are settings, written beside it in run.txt.
+/// The implicit_euler tableau on the stage machinery; the Newton variant and the solver are settings, written
+/// beside it in run.txt.
 class ImplicitEuler final : public DiagonallyImplicitRungeKutta {
  public:
   ImplicitEuler(ForceField& field, NewtonSettings settings);
-  [[nodiscard]] std::string name() const override;
 };
 
 }  // namespace cloth

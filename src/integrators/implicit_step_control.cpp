@@ -29,7 +29,7 @@ ControlledRun simulate_controlled(DiagonallyImplicitRungeKutta& stepper, const R
   result.v = scene.initial_velocities();
   const double T = settings.t_end;
   const double radius = divergence_radius(scene, T);
-  const int q = std::min(stepper.tableau().method.order, stepper.tableau().embedded_order);
+  const int q = std::min(stepper.tableau().method.order, stepper.tableau().method.embedded_order);
   result.energy.reserve(4096);
   result.frames.reserve(static_cast<std::size_t>(settings.frames) + 1);
   result.energy.push_back({0.0, field.energy(result.x, result.v)});

@@ -6,7 +6,7 @@
 #include "base/text.hpp"
 
 #include <cmath>
-#include <sys/stat.h>
+#include <vector>
 
 namespace cloth {
 
@@ -35,6 +35,26 @@ ImplicitTableau make(std::string name, int order, std::initializer_list<std::ini
   t.method.c = t.method.A.rowwise().sum();
   t.source = std::move(source);
   return t;
+}
+
+// The order conditions of t.b through t.order, and not those of the next order (up to 4, the conditions the
+// library states): a claim below what the weights satisfy would mislabel the method's measured order. `claim`
+// opens the message, `key` is the file's line that states the order.
+void check_order(const ButcherTableau& t, const std::string& claim, const std::string& key) {
+  if (t.order < 1 || t.order > 4)
+    throw InputError(claim + " " + std::to_string(t.order) + ": expected an order from 1 to 4 (the conditions "
+                     "this program checks)");
+  for (int p = 1; p <= t.order; ++p) {
+    const double defect = order_condition_defect(t, p);
+    if (defect > tolerance)
+      throw InputError(claim + " " + std::to_string(t.order) + " but an order-" + std::to_string(p) +
+                       " condition fails by " + fmt(defect));
+  }
+  int satisfied = t.order;
+  while (satisfied < 4 && order_condition_defect(t, satisfied + 1) <= tolerance) ++satisfied;
+  if (satisfied > t.order)
+    throw InputError(claim + " " + std::to_string(t.order) + " but satisfies the order conditions through order " +
+                     std::to_string(satisfied) + ": expected '" + key + " " + std::to_string(satisfied) + "'");
 }
 
 // Alexander's gamma for three stages: the root in (1/6, 1/2) of gamma^3 - 3 gamma^2 + 3/2 gamma - 1/6 = 0, which
@@ -69,7 +89,7 @@ const std::vector<ImplicitTableau>& builtin_implicit_tableaus() {
     // of TR-BDF2").
     const double d = (2 - r2) / 2, w = r2 / 4;
     std::vector<ImplicitTableau> t = {
-        make("backward_euler", 1, {{1}}, {1}, "Euler (1768); the one-stage Radau IIA method"),
+        make("implicit_euler", 1, {{1}}, {1}, "Euler (1768); the one-stage Radau IIA method"),
         make("implicit_midpoint", 2, {{0.5}}, {1}, "the one-stage Gauss method (Hairer, Lubich & Wanner 2006)"),
         make("trapezoid", 2, {{0, 0}, {0.5, 0.5}}, {0.5, 0.5}, "Crank & Nicolson (1947) as a two-stage ESDIRK"),
         make("sdirk2", 2, {{g2, 0}, {1 - g2, g2}}, {1 - g2, g2}, "Alexander (1977), gamma = 1 - sqrt(2)/2"),
@@ -80,8 +100,8 @@ const std::vector<ImplicitTableau>& builtin_implicit_tableaus() {
     };
     // TR-BDF2's third-order companion weights: the difference of the two combinations estimates the error of
     // the second-order step (Hosea & Shampine 1996).
-    t.back().b_hat = Eigen::Vector3d((1 - w) / 3, (3 * w + 1) / 3, d / 3);
-    t.back().embedded_order = 3;
+    t.back().method.b_hat = Eigen::Vector3d((1 - w) / 3, (3 * w + 1) / 3, d / 3);
+    t.back().method.embedded_order = 3;
     return t;
   }();
   // [implicit_tableaus]
@@ -96,7 +116,7 @@ void validate(const ImplicitTableau& tableau) {
   if (t.A.rows() != s || t.A.cols() != s || t.c.size() != s)
     throw InputError(who + "A must be " + std::to_string(s) + "x" + std::to_string(s) + " to match " +
                      std::to_string(s) + " weights b");
-  if (!t.A.allFinite() || !t.b.allFinite() || !t.c.allFinite() || !tableau.b_hat.allFinite())
+  if (!t.A.allFinite() || !t.b.allFinite() || !t.c.allFinite() || !t.b_hat.allFinite())
     throw InputError(who + "has a non-finite entry");
   for (int i = 0; i < s; ++i)
     for (int j = i + 1; j < s; ++j)
@@ -115,49 +135,40 @@ void validate(const ImplicitTableau& tableau) {
       throw InputError(who + "row " + std::to_string(i + 1) + ": c_" + std::to_string(i + 1) + " = " + fmt(t.c[i]) +
                        " but the row sum of A is " + fmt(row_sum) + " (consistency needs c_i = sum_j a_ij)");
   }
-  if (t.order < 1 || t.order > 4)
-    throw InputError(who + "claims order " + std::to_string(t.order) + ": expected an order from 1 to 4 (the "
-                     "conditions this program checks)");
   // The order conditions hold for A lower triangular or not: they are the same rooted trees (Butcher 2016).
-  for (int p = 1; p <= t.order; ++p) {
-    const double defect = order_condition_defect(t, p);
-    if (defect > tolerance)
-      throw InputError(who + "claims order " + std::to_string(t.order) + " but an order-" + std::to_string(p) +
-                       " condition fails by " + fmt(defect));
-  }
+  check_order(t, who + "claims order", "order");
   if (tableau.has_embedded()) {
-    if (tableau.b_hat.size() != s) throw InputError(who + "the embedded weights must number " + std::to_string(s));
+    if (t.b_hat.size() != s)
+      throw InputError(who + "bhat has " + std::to_string(t.b_hat.size()) + " weights: expected " +
+                       std::to_string(s) + ", one per stage as in b");
+    if (t.b_hat == t.b) throw InputError(who + "bhat equals b: the pair would estimate every error as zero");
     ButcherTableau embedded = t;
-    embedded.b = tableau.b_hat;
-    for (int p = 1; p <= tableau.embedded_order; ++p) {
-      const double defect = order_condition_defect(embedded, p);
-      if (defect > tolerance)
-        throw InputError(who + "the embedded weights claim order " + std::to_string(tableau.embedded_order) +
-                         " but an order-" + std::to_string(p) + " condition fails by " + fmt(defect));
-    }
+    embedded.b = t.b_hat;
+    embedded.order = t.embedded_order;
+    check_order(embedded, who + "the embedded weights bhat claim order", "embedded_order");
   }
 }
 
-ImplicitTableau implicit_tableau_from_argument(const std::string& name_or_path) {
-  std::string names;
-  for (const ImplicitTableau& t : builtin_implicit_tableaus()) {
-    if (t.method.name == name_or_path) return t;
-    names += (names.empty() ? "" : ", ") + t.method.name;
-  }
-  // Anything that exists is taken for a file, so that a folder or a FIFO is refused for what it is.
-  struct stat info {};
-  if (::stat(name_or_path.c_str(), &info) != 0)
-    throw InputError("'" + escaped(name_or_path) + "' is neither a built-in implicit tableau (" + names +
-                     ") nor a readable file");
+const ImplicitTableau& builtin_implicit_tableau(const std::string& name) {
+  for (const ImplicitTableau& t : builtin_implicit_tableaus())
+    if (t.method.name == name) return t;
+  throw InputError("'" + escaped(name) + "' is not a built-in diagonally implicit tableau");
+}
+
+ImplicitTableau parse_implicit_tableau(const std::string& text, const std::string& source) {
   ImplicitTableau t;
-  t.method = parse_tableau_entries(read_tableau_text(name_or_path), name_or_path);
-  t.source = name_or_path;
+  t.method = parse_tableau_entries(text, source);  // Chapter 3's format, with Chapter 8's 'bhat' and 'embedded_order'
+  t.source = source;
   try {
     validate(t);
   } catch (const InputError& e) {
-    throw InputError(escaped(name_or_path) + ": " + e.what());
+    throw InputError(escaped(source) + ": " + e.what());
   }
   return t;
+}
+
+ImplicitTableau read_implicit_tableau(const std::string& path) {
+  return parse_implicit_tableau(read_tableau_text(path), path);
 }
 
 }  // namespace cloth

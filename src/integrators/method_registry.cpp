@@ -3,11 +3,14 @@
 
 #include "base/input_error.hpp"
 #include "base/text.hpp"
+#include "integrators/bdf2.hpp"
 #include "integrators/embedded_runge_kutta.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/implicit_tableaus.hpp"
 #include "integrators/local_global.hpp"
 #include "integrators/symplectic_euler.hpp"
 
+#include <cmath>
 #include <sys/stat.h>
 
 namespace cloth {
@@ -67,6 +70,31 @@ std::unique_ptr<Stepper> make_symplectic_euler(const Method& /*m*/, ForceField& 
 
 std::unique_ptr<Stepper> make_implicit_euler(const Method& /*m*/, ForceField& field, const MethodSettings& settings) {
   return std::make_unique<ImplicitEuler>(field, settings.newton);
+}
+
+std::unique_ptr<Stepper> make_diagonally_implicit(const Method& m, ForceField& field, const MethodSettings& settings) {
+  return std::make_unique<DiagonallyImplicitRungeKutta>(field, builtin_implicit_tableau(m.name), settings.newton);
+}
+
+std::unique_ptr<Stepper> make_bdf2(const Method& /*m*/, ForceField& field, const MethodSettings& settings) {
+  return std::make_unique<Bdf2>(field, settings.newton);
+}
+
+// The Pade (1,1) approximant of e^z, R(z) = (1 + z/2) / (1 - z/2): implicit midpoint's and the trapezoidal rule's.
+Complex pade11(Complex z) { return (1.0 + z / 2.0) / (1.0 - z / 2.0); }
+
+// Alexander's two-stage SDIRK, stiffly accurate: R(z) = (1 + (1 - 2 gamma) z) / (1 - gamma z)^2,
+// gamma = 1 - sqrt(2)/2 (Hairer & Wanner 1996, IV.6).
+Complex sdirk2_stability_function(Complex z) {
+  const double g = 1 - std::sqrt(2.0) / 2;
+  return (1.0 + (1 - 2 * g) * z) / ((1.0 - g * z) * (1.0 - g * z));
+}
+
+// A row of the diagonally implicit family: its coefficients and source are in implicit_tableaus.cpp.
+Method diagonally_implicit(const char* name, const char* title, Complex (*stability)(Complex)) {
+  const ImplicitTableau& t = builtin_implicit_tableau(name);
+  return {name, title, MethodFamily::implicit_runge_kutta, t.method.order, t.method, stability,
+          make_diagonally_implicit};
 }
 
 std::unique_ptr<Stepper> make_local_global(const Method& /*m*/, ForceField& field, const MethodSettings& settings) {
@@ -208,14 +236,25 @@ const std::vector<Method>& methods() {
       // Implicit Euler (Chapter 4): the one-stage tableau A = [1], b = [1]. Its stepper is Chapter 4's Newton
       // solver for that one stage; NewtonSettings choose the variant (full, one), the linear solver and the
       // Jacobian treatment.
-      {"implicit_euler", "implicit Euler", MethodFamily::implicit_runge_kutta, 1, tableau("implicit_euler", 1, {{1}}, {1}),
-       implicit_euler_stability_function, make_implicit_euler},
+      {"implicit_euler", "implicit Euler", MethodFamily::implicit_runge_kutta, 1,
+       builtin_implicit_tableau("implicit_euler").method, implicit_euler_stability_function, make_implicit_euler},
+      // [implicit_rows]
+      // Chapter 9's diagonally implicit methods, each stage an implicit Euler equation for StageNewton.
+      diagonally_implicit("implicit_midpoint", "implicit midpoint", pade11),
+      diagonally_implicit("trapezoid", "trapezoidal rule", pade11),
+      diagonally_implicit("sdirk2", "SDIRK2", sdirk2_stability_function),
+      diagonally_implicit("sdirk3", "SDIRK3", nullptr),
+      diagonally_implicit("trbdf2", "TR-BDF2", nullptr),
+      // [implicit_rows]
       // Local/global (Chapter 10; Liu, Bargteil, O'Brien & Kavan 2013): implicit Euler's step again, its equations
       // solved by a fixed number of alternating spring projections and solves with a constant matrix instead of
       // Newton's method. Converged, it is implicit Euler; with few iterations it is a method of its own, so it
       // has no tableau and no scalar R(z) here.
       {"local_global", "local/global", MethodFamily::implicit_runge_kutta, 1, std::nullopt, nullptr,
        make_local_global},
+      // BDF2 (Chapter 9): a two-step method, so no tableau and no scalar R(z); its one implicit equation per step
+      // is a stage equation for StageNewton (Choi & Ko 2002 use it for cloth).
+      {"bdf2", "BDF2", MethodFamily::multistep, 2, std::nullopt, nullptr, make_bdf2},
   };
   return table;
 }
@@ -243,6 +282,29 @@ std::vector<std::string> method_names() {
 
 std::unique_ptr<Stepper> make_stepper(const std::string& name, ForceField& field, const MethodSettings& settings) {
   return find_method(name).stepper(field, settings);
+}
+
+std::vector<const Method*> newton_methods() {
+  std::vector<const Method*> out;
+  for (const Method& m : methods())
+    if ((m.family == MethodFamily::implicit_runge_kutta && m.tableau) || m.family == MethodFamily::multistep)
+      out.push_back(&m);
+  return out;
+}
+
+std::unique_ptr<NewtonStepper> make_newton_stepper(const std::string& name, ForceField& field,
+                                                   const MethodSettings& settings) {
+  std::string names;
+  for (const Method* m : newton_methods()) {
+    if (m->name == name) {
+      std::unique_ptr<Stepper> stepper = m->stepper(field, settings);
+      // Every such row's factory makes a NewtonStepper (the registry's test checks it), so this never fails.
+      if (dynamic_cast<NewtonStepper*>(stepper.get()) != nullptr)
+        return std::unique_ptr<NewtonStepper>(static_cast<NewtonStepper*>(stepper.release()));
+    }
+    names += (names.empty() ? "" : ", ") + m->name;
+  }
+  throw InputError("unknown implicit method '" + escaped(name) + "': expected one of " + names);
 }
 
 ButcherTableau tableau_from_argument(const std::string& name_or_path) {

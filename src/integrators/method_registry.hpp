@@ -7,6 +7,8 @@
 #include "base/name_table.hpp"
 #include "integrators/butcher_tableau.hpp"
 #include "integrators/implicit_euler.hpp"
+#include "integrators/implicit_tableaus.hpp"
+#include "integrators/newton_stepper.hpp"
 #include "integrators/stepper.hpp"
 
 #include <complex>
@@ -69,6 +71,15 @@ std::vector<std::string> method_names();
 
 /// find_method(name).stepper(field, settings).
 std::unique_ptr<Stepper> make_stepper(const std::string& name, ForceField& field, const MethodSettings& settings = {});
+
+/// The methods whose implicit equations StageNewton solves: the diagonally implicit rows (implicit_runge_kutta
+/// with a tableau) and the multistep ones, in registry order.
+std::vector<const Method*> newton_methods();
+
+/// One of newton_methods() by name, as the NewtonStepper it is (its settings, residuals and timing readable).
+/// Throws InputError "unknown implicit method 'x': expected one of ..." listing their names.
+std::unique_ptr<NewtonStepper> make_newton_stepper(const std::string& name, ForceField& field,
+                                                   const MethodSettings& settings = {});
 
 /// The tableau of a registered explicit Runge-Kutta method, or else a tableau file by path (Chapter 3's format).
 /// Throws InputError listing the accepted names when neither exists, or naming the line that is wrong in a file.

@@ -59,6 +59,21 @@ void stop_run(RunResult& result, RunStatus status, StepFailureKind kind, long lo
   result.message += " at step " + std::to_string(step) + ", t = " + format_number(t) + " s: " + result.reason;
 }
 
+namespace {
+
+// A stop request (SIGINT, SIGTERM, see program/interrupt.hpp) that the run should honour before its next step.
+bool stop_requested(const RunSettings& settings) {
+  return settings.stop != nullptr && settings.stop->load(std::memory_order_relaxed) != 0;
+}
+
+// Ends the run as interrupted after `steps_done` steps, at time `t`.
+void stop_interrupted(RunResult& result, long long steps_done, double t) {
+  result.status = RunStatus::interrupted;
+  result.message = "interrupted after step " + std::to_string(steps_done) + ", t = " + format_number(t) + " s";
+}
+
+}  // namespace
+
 RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record) {
   ForceField& field = stepper.field();
   const Scene& scene = field.scene();
@@ -94,9 +109,8 @@ RunResult simulate(Stepper& stepper, const RunSettings& settings, bool record) {
     const double t0 = static_cast<double>(k) * h;
     const double t1 = k + 1 == steps ? T : static_cast<double>(k + 1) * h;
     // A stop request (SIGINT, SIGTERM) ends the run between two steps, with every output up to here whole.
-    if (settings.stop != nullptr && settings.stop->load(std::memory_order_relaxed) != 0) {
-      result.status = RunStatus::interrupted;
-      result.message = "interrupted after step " + std::to_string(k) + ", t = " + format_number(t0) + " s";
+    if (stop_requested(settings)) {
+      stop_interrupted(result, k, t0);
       break;
     }
     x_prev = result.x;

@@ -134,10 +134,11 @@ bool StageNewton::linear_solve(const Vector& rhs, Vector& dv, bool warm_start) {
   switch (settings_.solver) {
     case LinearSolverKind::ldlt:
     case LinearSolverKind::ldu: {
-      // Refined until the update is as accurate as the matrix allows; an update Newton cannot trust (the
-      // factorization of an indefinite or non-symmetric J grew too much for refinement to recover) fails the
-      // step rather than steering Newton with it.
-      const double backward_error = block_.solve(A_, rhs, dv);
+      // Refined until the update is as accurate as Newton needs it (a backward error of max_backward_error:
+      // refining further costs a substitution and a product with J per step and changes no converged stage);
+      // an update Newton cannot trust (the factorization of an indefinite or non-symmetric J grew too much for
+      // refinement to recover) fails the step rather than steering Newton with it.
+      const double backward_error = block_.solve(A_, rhs, dv, max_backward_error);
       if (!(backward_error <= max_backward_error)) {
         linear_failure_kind_ = StepFailureKind::refinement_failed;
         linear_failure_ = "backward error " + format_number(backward_error, 2) +
