@@ -530,8 +530,7 @@ TEST_CASE("hostile flags for ch05-ch10: flags a program does not use, bad values
       {"ch07_stability", {"--budget", "-1"}, "--budget: expected a number >= 0"},
       {"ch07_stability", {"--dt", "0.01", "--dt", "0.02"}, "--dt: given twice ('0.01', then '0.02'): " + given_twice},
       {"ch09_implicit_runge_kutta", {"--tableau", "rk4"},
-       "--tableau: 'rk4' is neither a built-in implicit tableau (*) nor a readable file; bdf2 names the multistep "
-       "method"},
+       "--tableau: 'rk4' is neither a registered implicit method (*) nor a readable tableau file"},
       {"ch09_implicit_runge_kutta", {"--tol", "1e-3"},
        "--tol: step control needs an embedded pair, and sdirk2 has no embedded weights: use --tableau trbdf2, or "
        "leave --tol out for fixed steps"},
