@@ -51,6 +51,19 @@ double fixed_step_error(const ButcherTableau& t, double h, bool embedded) {
   return oscillator_error(scene, x, v, 1.0);
 }
 
+// The damped oscillator of one spring (the closed form of single_spring_exact) at rest displacement s0, its force
+// field and a run over T = 1 s: what the driver tests below start from.
+struct Oscillator {
+  const Scene scene{single_spring_params(K, D)};
+  ForceField field{scene};
+  RunSettings run;
+  Vector x0, v0;
+  Oscillator() {
+    run.t_end = 1.0;
+    single_spring_initial_state(scene, s0, x0, v0);
+  }
+};
+
 }  // namespace
 
 TEST_CASE("rooted trees: 1, 1, 2, 4, 9, 20, 48, 115 of orders 1 to 8, with Butcher's densities") {
@@ -147,13 +160,8 @@ TEST_CASE("the estimate is the true local error of the lower-order row") {
   }
 }
 
-TEST_CASE("error control keeps the global error of the oscillator within a modest factor of the tolerance") {
-  const Scene scene(single_spring_params(K, D));
-  ForceField field(scene);
-  RunSettings run;
-  run.t_end = 1.0;
-  Vector x0, v0;
-  single_spring_initial_state(scene, s0, x0, v0);
+TEST_CASE_FIXTURE(Oscillator,
+                  "error control keeps the global error of the oscillator within a modest factor of the tolerance") {
   for (const char* name : {"bs32", "rkf45", "dopri5", "tsit5", "cash_karp"}) {
     for (const ControllerKind controller : {ControllerKind::elementary, ControllerKind::pi}) {
       for (const double tol : {1e-6, 1e-8, 1e-10}) {
@@ -176,13 +184,8 @@ TEST_CASE("error control keeps the global error of the oscillator within a modes
   }
 }
 
-TEST_CASE("first same as last saves one evaluation per step, counted; rejected attempts keep their first stage") {
-  const Scene scene(single_spring_params(K, D));
-  ForceField field(scene);
-  RunSettings run;
-  run.t_end = 1.0;
-  Vector x0, v0;
-  single_spring_initial_state(scene, s0, x0, v0);
+TEST_CASE_FIXTURE(Oscillator,
+                  "first same as last saves one evaluation per step, counted; rejected attempts keep their first stage") {
   for (const char* name : {"dopri5", "cash_karp", "rkf45", "bs32"}) {
     INFO(name);
     const ButcherTableau t = embedded_tableau_from_argument(name);
@@ -201,13 +204,9 @@ TEST_CASE("first same as last saves one evaluation per step, counted; rejected a
   }
 }
 
-TEST_CASE("a rejected step leaves the state untouched, bit for bit, and the next attempt starts from it") {
-  const Scene scene(single_spring_params(K, D));
-  ForceField field(scene);
-  RunSettings run;
+TEST_CASE_FIXTURE(Oscillator,
+                  "a rejected step leaves the state untouched, bit for bit, and the next attempt starts from it") {
   run.t_end = 0.5;
-  Vector x0, v0;
-  single_spring_initial_state(scene, s0, x0, v0);
   EmbeddedRungeKutta rk(field, embedded_tableau_from_argument("dopri5"));
   // Directly: an attempt far too large, then the state compared.
   Vector x = x0, v = v0;
@@ -238,13 +237,8 @@ TEST_CASE("a rejected step leaves the state untouched, bit for bit, and the next
   CHECK(checked == r.rejected);
 }
 
-TEST_CASE("below the floor on h the run stops as step_size_too_small, with the state it reached") {
-  const Scene scene(single_spring_params(K, D));
-  ForceField field(scene);
-  RunSettings run;
-  run.t_end = 1.0;
-  Vector x0, v0;
-  single_spring_initial_state(scene, s0, x0, v0);
+TEST_CASE_FIXTURE(Oscillator,
+                  "below the floor on h the run stops as step_size_too_small, with the state it reached") {
   EmbeddedRungeKutta rk(field, embedded_tableau_from_argument("dopri5"));
   AdaptiveSettings settings;
   settings.tolerances = {1e-12, 1e-12};
@@ -257,14 +251,9 @@ TEST_CASE("below the floor on h the run stops as step_size_too_small, with the s
   CHECK(r.x.allFinite());
 }
 
-TEST_CASE("frames fall on their exact times by Hermite interpolation, and the last one is the final state") {
-  const Scene scene(single_spring_params(K, D));
-  ForceField field(scene);
-  RunSettings run;
-  run.t_end = 1.0;
+TEST_CASE_FIXTURE(Oscillator,
+                  "frames fall on their exact times by Hermite interpolation, and the last one is the final state") {
   run.frames = 7;  // times that no step is aimed at
-  Vector x0, v0;
-  single_spring_initial_state(scene, s0, x0, v0);
   EmbeddedRungeKutta rk(field, embedded_tableau_from_argument("dopri5"));
   AdaptiveSettings settings;
   settings.tolerances = {1e-10, 1e-10};
