@@ -10,7 +10,7 @@ set(CLOTH_PLOT_DIR ${CMAKE_BINARY_DIR}/plots CACHE INTERNAL "Where the figures g
 set(CLOTH_PLOT_DATA_DIR ${CMAKE_BINARY_DIR}/plots/data CACHE INTERNAL "Where the figures' data go")
 add_custom_target(plots)
 
-# cloth_add_plot(NAME run_name TARGET exe SCRIPT file.gp [ARGS program flags...] [FIGURES a.png ...]
+# cloth_add_plot(NAME run_name TARGET exe [SCRIPT file.gp] [ARGS program flags...] [FIGURES a.png ...]
 #                [FRAGMENTS table.md ...])
 # Runs `exe ARGS --out build/plots/data/run_name`, then
 # `gnuplot -e "data='<that folder>'; plots='build/plots'" file.gp`.
@@ -29,7 +29,16 @@ function(cloth_add_plot)
     list(APPEND fragments ${data}/${f})
   endforeach()
   list(JOIN fragments "|" fragment_list)  # one command-line argument; RequireFragments.cmake splits it
-  get_filename_component(script ${P_SCRIPT} ABSOLUTE)
+  # A run without SCRIPT writes only fragments for its page (a benchmark's measured table): no gnuplot step.
+  if(P_SCRIPT)
+    get_filename_component(script ${P_SCRIPT} ABSOLUTE)
+    set(draw ${GNUPLOT_EXECUTABLE} -e)
+    set(draw_expression "data='${data}'; plots='${CLOTH_PLOT_DIR}'")
+  else()
+    set(script "")
+    set(draw ${CMAKE_COMMAND} -E)
+    set(draw_expression true)
+  endif()
   add_custom_command(
     OUTPUT ${stamp}
     BYPRODUCTS ${figures} ${fragments}
@@ -38,7 +47,7 @@ function(cloth_add_plot)
     COMMAND $<TARGET_FILE:${P_TARGET}> ${P_ARGS} --out ${data}
     COMMAND ${CMAKE_COMMAND} -DPROGRAM=${P_TARGET} "-DFILES=${fragment_list}"
             -P ${PROJECT_SOURCE_DIR}/cmake/RequireFragments.cmake
-    COMMAND ${GNUPLOT_EXECUTABLE} -e "data='${data}'; plots='${CLOTH_PLOT_DIR}'" ${script}
+    COMMAND ${draw} "${draw_expression}" ${script}
     COMMAND ${CMAKE_COMMAND} -E touch ${stamp}
     DEPENDS ${P_TARGET} ${script} ${PROJECT_SOURCE_DIR}/cmake/RequireFragments.cmake
     WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}

@@ -12,6 +12,7 @@
 #include "base/input_error.hpp"
 #include "integrators/method_registry.hpp"
 #include "program/command_line.hpp"
+#include "program/fragment.hpp"
 #include "program/output.hpp"
 
 #include <boost/numeric/odeint.hpp>
@@ -176,22 +177,22 @@ int main(int argc, char** argv) {
     const ch06::Seconds engine = best_of(runs, [&] { return time_in_process([&] { x_core = core_engine(field, h, T); }); });
     const ch06::Seconds plain_in_process = best_of(runs, [&] { return time_in_process([&] { y_plain = plain.run(h, T); }); });
 
+    // Seconds of wall and CPU time, and the CPU time as a ratio to the first row of each table.
     const auto row = [](const char* what, const ch06::Seconds& t, const ch06::Seconds& ref) {
-      char line[256];
-      std::snprintf(line, sizeof line, "| %s | %.3f | %.3f | %.2f |\n", what, t.wall, t.cpu, t.cpu / ref.cpu);
-      return std::string(line);
+      return std::vector<std::string>{what, format_fixed(t.wall, 3), format_fixed(t.cpu, 3),
+                                      format_fixed(t.cpu / ref.cpu, 2)};
     };
-    std::string table = "RK4, h = " + H + " s over T = " + TT + " s on the " + M + " x " + N + " cloth with K = " + K +
-                        " N/m, D = " + D + " N s/m; the fastest of " + std::to_string(runs) +
-                        " runs; ratio of CPU times.\n\n| program | wall [s] | CPU [s] | ratio |\n|---|---|---|---|\n";
-    table += row("written with Boost.Odeint alone (process)", plain_process, plain_process);
-    table += row("ch03_runge_kutta with its outputs (process)", ch03_process, plain_process);
-    table += "\n| integrator on cloth::ForceField | wall [s] | CPU [s] | ratio |\n|---|---|---|---|\n";
-    table += row("odeint runge_kutta4", odeint_core, odeint_core);
-    table += row("generic Butcher-tableau engine, rk4", engine, odeint_core);
-    OutputFile md(dir + "/odeint_comparison.md");
-    std::fputs(table.c_str(), md.get());
-    md.commit();
+    MarkdownTable programs({"program", "wall [s]", "CPU [s]", "ratio"}, "lrrr");
+    programs.add_row(row("written with Boost.Odeint alone (process)", plain_process, plain_process));
+    programs.add_row(row("ch03_runge_kutta with its outputs (process)", ch03_process, plain_process));
+    MarkdownTable integrators({"integrator on cloth::ForceField", "wall [s]", "CPU [s]", "ratio"}, "lrrr");
+    integrators.add_row(row("odeint runge_kutta4", odeint_core, odeint_core));
+    integrators.add_row(row("generic Butcher-tableau engine, rk4", engine, odeint_core));
+    const std::string table = "RK4, h = " + H + " s over T = " + TT + " s on the " + M + " x " + N +
+                              " cloth with K = " + K + " N/m, D = " + D + " N s/m; the fastest of " +
+                              std::to_string(runs) + " runs; ratio of CPU times.\n\n" + programs.markdown() + "\n" +
+                              integrators.markdown();
+    write_text_fragment(dir + "/odeint_comparison.md", table + "\n" + measured_by_line(reader_command(argc, argv)));
     std::fputs(table.c_str(), stdout);
     write_key_values(dir + "/odeint_comparison.txt",
                      {{"plain_process_cpu_seconds", format_number(plain_process.cpu)},

@@ -57,11 +57,14 @@ std::string MarkdownTable::markdown() const {
   return text;
 }
 
+std::string measured_by_line(const std::string& command) {
+  // An HTML block, so that docs/book.css can set it apart from the prose.
+  return "<div class=\"measured\">Measured by `" + command + "`, compiled by " + compiler_description() + " with `" +
+         compiler_flags() + "` (" + vector_instructions() + "), on " + processor_description() + ".</div>\n";
+}
+
 void write_table_fragment(const std::string& path, const MarkdownTable& table, const std::string& command) {
-  // The line under the table is an HTML block so that docs/book.css can set it apart from the prose.
-  write_text_fragment(path, table.markdown() + "\n<div class=\"measured\">Measured by `" + command +
-                                "`, compiled by " + compiler_description() + " with `" + compiler_flags() + "` (" +
-                                vector_instructions() + "), on " + processor_description() + ".</div>\n");
+  write_text_fragment(path, table.markdown() + "\n" + measured_by_line(command));
 }
 
 void write_text_fragment(const std::string& path, const std::string& text) { write_text(path, text); }

@@ -36,6 +36,10 @@ class MarkdownTable {
 /// cannot be written in full.
 void write_table_fragment(const std::string& path, const MarkdownTable& table, const std::string& command);
 
+/// The line a measured fragment ends with: `command` (as a reader would type it) and the build that measured it.
+/// write_table_fragment appends it; a fragment of several tables appends it once, after the last.
+std::string measured_by_line(const std::string& command);
+
 /// Writes `text` to `path` as it is: a sentence or a value for the page's prose, or a console transcript for
 /// `\verbinclude`. Throws OutputError when the file cannot be written in full.
 void write_text_fragment(const std::string& path, const std::string& text);
