@@ -188,10 +188,25 @@ int main(int argc, char** argv) {
     MarkdownTable integrators({"integrator on cloth::ForceField", "wall [s]", "CPU [s]", "ratio"}, "lrrr");
     integrators.add_row(row("odeint runge_kutta4", odeint_core, odeint_core));
     integrators.add_row(row("generic Butcher-tableau engine, rk4", engine, odeint_core));
+
+    // 3. What a program costs beyond its integration: one step of h = 0.01 s of each single-run program on the
+    //    same scene, as a whole process (start-up, the scene, the fastest rates for run.txt, every output).
+    const std::filesystem::path bin = std::filesystem::path(ch03).parent_path();
+    MarkdownTable one_step({"one step of h = 0.01 s, whole process", "wall [ms]", "CPU [ms]"}, "lrr");
+    for (const char* program : {"ch02_explicit_euler", "ch03_runge_kutta", "ch04_implicit_euler", "ch08_adaptive_step",
+                                "ch09_implicit_runge_kutta"}) {
+      std::vector<std::string> args = {(bin / program).string()};
+      args.insert(args.end(), scene_args.begin(), scene_args.end() - 4);  // the scene, without --dt and --t-end
+      if (std::string(program) != "ch08_adaptive_step") args.insert(args.end(), {"--dt", "0.01"});  // ch08 adapts
+      args.insert(args.end(), {"--t-end", "0.01", "--out", dir + "/one_step_" + program});
+      const ch06::Seconds t = best_of(std::max(runs, 5), [&] { return time_process(args); });
+      one_step.add_row({std::string("`") + program + "`", format_fixed(1e3 * t.wall, 1), format_fixed(1e3 * t.cpu, 1)});
+    }
     const std::string table = "RK4, h = " + H + " s over T = " + TT + " s on the " + M + " x " + N +
                               " cloth with K = " + K + " N/m, D = " + D + " N s/m; the fastest of " +
                               std::to_string(runs) + " runs; ratio of CPU times.\n\n" + programs.markdown() + "\n" +
-                              integrators.markdown();
+                              integrators.markdown() + "\nOn the same cloth, the fastest of " +
+                              std::to_string(std::max(runs, 5)) + " runs:\n\n" + one_step.markdown();
     write_text_fragment(dir + "/odeint_comparison.md", table + "\n" + measured_by_line(reader_command(argc, argv)));
     std::fputs(table.c_str(), stdout);
     write_key_values(dir + "/odeint_comparison.txt",
