@@ -163,7 +163,7 @@ std::vector<ProgramOutputs> every_output() {
        joined({"single_spring.dat", "report_runs.md"},
               in_folders(joined(prefixed("explicit_euler_"), prefixed("symplectic_euler_")), run_files))},
       {"ch03_runge_kutta", {}, ch03_files},
-      {"ch03_runge_kutta", {"--report-runs"}, joined({"order.dat"}, in_folders(prefixed("rk4_"), ch03_files))},
+      {"ch03_runge_kutta", {"--report-runs"}, joined({"order.dat", "methods.md"}, in_folders(prefixed("rk4_"), ch03_files))},
       {"ch04_implicit_euler", {}, run_files},
       {"ch04_implicit_euler",
        {"--report-runs"},
@@ -199,8 +199,9 @@ std::vector<ProgramOutputs> every_output() {
 // Chapters 5, 6, 7 and 9: the experiment programs and Chapter 9's single run, their outputs as their pages list
 // them (Chapters 8 and 10 are in every_output()).
 std::vector<ProgramOutputs> later_outputs() {
-  std::vector<std::string> ch05 = {"summary.dat", "summary.md", "runs.dat", "instants.dat", "cases.dat",
-                                   "figures.dat", "parameters.dat", "theory.txt"};
+  std::vector<std::string> ch05 = {"summary.dat", "summary.md", "runs.dat",  "instants.dat", "cases.dat",
+                                   "figures.dat", "parameters.dat", "theory.txt", "theory.md", "deformed_damping.md",
+                                   "growth.md"};
   for (const char* method : {"explicit_euler", "symplectic_euler", "rk4", "implicit_euler"})
     for (const std::string& c : report_cases) {
       const std::string run = std::string(method) + "_" + c;
@@ -215,14 +216,15 @@ std::vector<ProgramOutputs> later_outputs() {
                                    "implicit_euler.txt", "summary.txt"};
   for (const std::string& c : report_cases)
     ch07.insert(ch07.end(), {"spectrum_rest_" + c + ".dat", "spectrum_sagged_" + c + ".dat"});
-  std::vector<std::string> ch09_studies = {"energy_summary.dat", "orders.dat", "work_precision.dat"};
+  std::vector<std::string> ch09_studies = {"energy_summary.dat", "orders.dat", "work_precision.dat", "methods.md",
+                                           "energy_summary.md", "orders.md", "work_precision.md"};
   // Chapter 9's energy study runs every built-in implicit tableau of the library, and BDF2.
   std::vector<std::string> ch09_methods = {"bdf2"};
   for (const cloth::ImplicitTableau& t : cloth::builtin_implicit_tableaus()) ch09_methods.push_back(t.method.name);
   for (const std::string& method : ch09_methods)
     for (const std::string& file : run_files) ch09_studies.push_back("energy_" + method + "/" + file);
   return {
-      {"ch05_report_figures", {}, joined(ch05, {"sweep.dat"})},
+      {"ch05_report_figures", {}, joined(ch05, {"sweep.dat", "sweep.md", "sweep_implicit.md"})},
       {"ch05_report_figures", {"--no-sweep"}, ch05},
       {"ch06_speed_vs_error", {}, ch06},
       {"ch06_speed_vs_error", {"--bench-only"}, {"benchmarks.dat"}},
@@ -234,7 +236,7 @@ std::vector<ProgramOutputs> later_outputs() {
 }
 
 // The cases every_output() makes: one per output, one for the last output's temporary name, one for a subfolder.
-constexpr std::size_t folder_cases_ch01_ch04 = 123;
+constexpr std::size_t folder_cases_ch01_ch04 = 124;
 #ifdef CLOTH_HAVE_CH08_ADAPTIVE_STEP
 constexpr std::size_t folder_cases_ch08 = (5 + 1) + (12 + 1);
 #else

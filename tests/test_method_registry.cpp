@@ -39,6 +39,7 @@ TEST_CASE("every row is complete, its name is unique, and its tableau carries it
     INFO(m.name);
     CHECK(names.insert(m.name).second);
     CHECK(!m.title.empty());
+    CHECK(!m.description.empty());  // the book's method tables print it
     CHECK(static_cast<bool>(m.make));
     CHECK(m.order >= 1);
     CHECK(std::string(method_families().name(m.family)) != "?");

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <regex>
 #include <sstream>
 
 using namespace cloth_test;
@@ -65,5 +66,34 @@ TEST_CASE("ch05_report_figures on an 8x8 cloth: full grid, unstretched start, en
   CHECK(segments == 2 * (7 * 8 + 8 * 7));  // two endpoints per structural spring of an 8x8 grid
   CHECK(worst < 1e-12);
   CHECK(fs::exists(cwd / "out" / "runs" / "implicit_euler_K50_D0" / "run.txt"));
+}
+
+TEST_CASE("ch05_report_figures --v0 0: a cloth dropped from rest (E(0) = 0) gets finite energy ratios, relative to W L") {
+  const ProgramFolder folder;
+  const fs::path out = folder.cwd() / "out";
+  const ProgramRun run = folder.run("ch05_report_figures", {"--grid", "6x6", "--t-end", "0.2", "--v0", "0", "--out", "out"});
+  CAPTURE(run.err);
+  REQUIRE(run.status == 0);
+  // What the reader reads, the console and the page's fragments, and the ratios the energy plot draws: no
+  // infinity or NaN, as a ratio to E(0) = 0 would give.
+  const std::regex not_finite(R"((^|[^a-z])(inf|infinity|nan)([^a-z]|$))", std::regex::icase);
+  std::vector<std::pair<std::string, std::string>> texts = {{"stdout", run.out}};
+  for (const char* fragment : {"summary.md", "theory.md", "deformed_damping.md", "growth.md", "sweep.md",
+                               "sweep_implicit.md", "series_rk4_K200_D20.dat", "series_explicit_euler_K50_D0.dat"})
+    texts.emplace_back(fragment, read_text(out / fragment));
+  for (const auto& [name, text] : texts) {
+    INFO(name);
+    CHECK(!text.empty());
+    CHECK_FALSE(std::regex_search(text, not_finite));
+  }
+  // The reference is W L: 32 free particles of 1 kg at g = 9.81 m/s^2, side 5 x 0.1 m (a 6x6 grid, four corners
+  // pinned), 156.96 J; the page's table names it.
+  CHECK(read_text(out / "summary.md").find("W L = 0.157 kJ") != std::string::npos);
+  std::istringstream parameters(data_lines(out / "parameters.dat").at(0));
+  double h = 0, t_end = 0, t_implicit = 0, e_ref = 0;
+  int nmethods = 0, ncases = 0, ninstants = 0, launch = 1;
+  parameters >> h >> t_end >> t_implicit >> nmethods >> ncases >> ninstants >> e_ref >> launch;
+  CHECK(e_ref == doctest::Approx(32 * 9.81 * 0.5).epsilon(1e-5));
+  CHECK(launch == 0);
 }
 #endif

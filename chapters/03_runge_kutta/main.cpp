@@ -11,6 +11,7 @@
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/limits.hpp"
+#include "program/method_tables.hpp"
 #include "program/output.hpp"
 #include "program/progress.hpp"
 #include "program/run_outputs.hpp"
@@ -68,9 +69,10 @@ std::vector<std::string> single_run_outputs() {
   return names;
 }
 
-// What --report-runs writes with `tableau`: order.dat and a folder of run outputs per report case.
+// What --report-runs writes with `tableau`: order.dat, the page's table of methods (methods.md) and a folder of run
+// outputs per report case.
 std::vector<std::string> report_run_outputs(const ButcherTableau& tableau) {
-  std::vector<std::string> names = {"order.dat"};
+  std::vector<std::string> names = {"order.dat", "methods.md"};
   for (const ReportCase& c : report_cases)
     for (const std::string& name : single_run_outputs()) names.push_back(report_folder(tableau, c) + "/" + name);
   return names;
@@ -133,7 +135,7 @@ int main(int argc, char** argv) {
                 [&](const std::string& s) { tableau_argument = s; });
   cli.add_switch("--report-runs",
                  "the chosen tableau on the report's (K, D) = (50,0), (200,0), (200,20), one subfolder of --out each, "
-                 "and order.dat (the chapter's figures; exit 0 even when a run diverges)",
+                 "order.dat and methods.md (the chapter's figures and table; exit 0 even when a run diverges)",
                  [&] { report_runs = true; });
   return run_program(cli.program(), [&] {
     Options opt = cli.parse(argc, argv);
@@ -174,6 +176,8 @@ int main(int argc, char** argv) {
         return status;
     }
     measure_orders(opt.run.out_dir);
+    // The page's table of the registry's explicit Runge-Kutta rows: computed from their tableaus, not measured.
+    write_text_fragment(opt.run.out_dir + "/methods.md", explicit_method_table().markdown());
     return 0;
   });
 }

@@ -73,11 +73,22 @@ const Run& sweep_run(const std::vector<Run>& runs, std::size_t m, std::size_t k,
 /// The file name of a run: "rk4_K50_D0".
 std::string run_name(const Run& run);
 
-/// What the figures and tables say of a run's energy, relative to E(0).
-struct EnergyMeasures {
-  double gain = 0, final_change = 0, peak = 1;
+/// The energy every ratio of the figures and tables is relative to, E_ref (see energy_reference).
+struct EnergyReference {
+  double joules = 0;
+  bool launch = true;  ///< E(0), the launch's kinetic energy; false: the cloth starts at rest and E_ref = W L
+  /// What it is, for the page: "E(0) = 79.2 kJ, the launch's kinetic energy".
+  [[nodiscard]] std::string description() const;
 };
-EnergyMeasures energy_measures(const std::vector<cloth::EnergySample>& energy);
+/// E_ref for a scene whose energy at t = 0 is `e0` (the same for every run: K and D do not enter it).
+EnergyReference energy_reference(const cloth::SceneParams& scene, double e0);
+
+/// What the figures and tables say of a run's energy, relative to E_ref.
+struct EnergyMeasures {
+  double gain = 0, final_change = 0, peak = 0;
+  double rise_from = 0, rise_to = 0;  ///< the stretch [s] of the largest rise, the one `gain` measures
+};
+EnergyMeasures energy_measures(const std::vector<cloth::EnergySample>& energy, const EnergyReference& reference);
 
 /// The lowest free particle (positions of every particle in grid order).
 double lowest_z(const cloth::Scene& scene, const cloth::Vector& positions);
@@ -89,13 +100,21 @@ double stop_time(const cloth::RunResult& r, double h);
 
 /// summary.dat, series_RUN.dat and mesh_RUN.dat of the figures' runs, and the tables plot.gp reads to lay
 /// them out: parameters.dat, runs.dat, instants.dat, cases.dat, figures.dat.
-void write_figure_data(const std::vector<Run>& runs, const cloth::Options& opt, const Settings& settings);
+void write_figure_data(const std::vector<Run>& runs, const cloth::Options& opt, const Settings& settings,
+                       const EnergyReference& reference);
 
-/// theory.txt: the stability numbers of Chapters 2-4 for every (K, D), and the fastest damped mode on the
-/// deformed cloth of implicit Euler's damped runs.
-void write_theory(const std::vector<Run>& runs, const cloth::Options& opt);
+/// growth.md: explicit Euler's undamped figure runs, the energy's measured growth a step against the rest state's
+/// prediction 1 + (h omega_max)^2.
+void write_growth(const std::vector<Run>& runs, const cloth::Options& opt, const Settings& settings,
+                  const EnergyReference& reference);
 
-/// sweep.dat: one block per method, one line per (K, D).
-void write_sweep(const std::vector<Run>& runs, const cloth::Options& opt);
+/// theory.txt, and for the page theory.md and deformed_damping.md: the stability numbers of Chapters 2-4 for every
+/// (K, D), and the fastest damped mode on the deformed cloth of implicit Euler's damped runs.
+void write_theory(const std::vector<Run>& runs, const cloth::Options& opt, const Settings& settings);
+
+/// sweep.dat, and for the page sweep.md (every method's outcome and gain per K and D) and sweep_implicit.md
+/// (implicit Euler's undamped runs: energy lost and lowest point).
+void write_sweep(const std::vector<Run>& runs, const cloth::Options& opt, const Settings& settings,
+                 const EnergyReference& reference);
 
 }  // namespace ch05

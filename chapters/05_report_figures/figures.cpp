@@ -32,7 +32,8 @@ std::string quoted(const std::string& text) { return '"' + text + '"'; }
 
 }  // namespace
 
-void write_figure_data(const std::vector<Run>& runs, const Options& opt, const Settings& settings) {
+void write_figure_data(const std::vector<Run>& runs, const Options& opt, const Settings& settings,
+                       const EnergyReference& reference) {
   const double h = opt.run.dt, T = opt.run.t_end;
   const std::string dir = opt.run.out_dir + "/";
   const std::size_t cases = report_cases.size(), figure_runs = methods.size() * cases;
@@ -42,9 +43,10 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
   std::fprintf(summary.get(),
                "# method K D status t_stopped[s] energy_gain energy_final_change sag_T[m] min_z_run[m] "
                "max_strain_T newton_per_step wall[s]\n"
-               "# status: ok, diverged, or the kind of the step that failed; energy_gain = max over s <= t of (E(t)-E(s))/|E(0)|, "
-               "energy_final_change = (E(T)-E(0))/|E(0)|, over the sane part of a stopped run; sag_T = lowest z of "
-               "the last sane state\n");
+               "# status: ok, diverged, or the kind of the step that failed; t_stopped: NaN for a run that finished; "
+               "energy_gain = max over s <= t of (E(t)-E(s))/E_ref, energy_final_change = (E(T)-E(0))/E_ref, over "
+               "the sane part of a stopped run, E_ref = %s; sag_T = lowest z of the last sane state\n",
+               reference.description().c_str());
   OutputFile table(dir + "runs.dat");
   std::fprintf(table.get(), "# run name method status mesh_blocks t_reached[s] xmin xmax ymin ymax zmin zmax  (run = "
                             "method * %zu + case + 1; the box is the animation's)\n", cases);
@@ -55,10 +57,13 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
     return list;
   }().c_str());
   // The page's table (summary.md): the same rows, as a reader reads them.
-  MarkdownTable page_table({"method", "K", "D", "outcome", "energy gain", "E(T)/E(0) - 1", "lowest z over the run [m]"},
-                           "lrrlrrr");
-  std::printf("\n%-17s %5s %4s  %-9s %8s %11s %11s %8s %8s %10s\n", "method", "K", "D", "status", "t_stop", "E gain",
-              "E(T)/E0-1", "sag_T", "min z", "max strain");
+  const std::string ratio = reference.launch ? "E(0)" : "E_ref";
+  MarkdownTable page_table({"method", "K", "D", "outcome", "energy gain", "largest rise, from t to t [s]",
+                            reference.launch ? "E(T)/E(0) - 1" : "(E(T) - E(0))/E_ref", "lowest z over the run [m]"},
+                           "lrrlrrrr");
+  std::printf("\nEnergies relative to %s\n", reference.description().c_str());
+  std::printf("%-17s %5s %4s  %-9s %8s %11s %11s %8s %8s %10s\n", "method", "K", "D", "status", "t_stop", "E gain",
+              "E(T)-E(0)", "sag_T", "min z", "max strain");
   for (std::size_t r = 0; r < figure_runs; ++r) {
     const Run& run = runs[r];
     const RunResult& res = run.result;
@@ -66,7 +71,7 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
     const Scene scene(with_K_and_D(opt.scene, run.K, run.D));
     Vector last(3 * scene.particle_count());
     scene.all_positions(res.x, last);
-    const EnergyMeasures e = energy_measures(res.energy);
+    const EnergyMeasures e = energy_measures(res.energy, reference);
     double min_z = 0;
     for (const Frame& f : res.frames) min_z = std::min(min_z, lowest_z(scene, f.positions));
     const std::string status =
@@ -74,23 +79,24 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
     std::fprintf(summary.get(), "%s %g %g %s %.4g %.6g %.6g %.6g %.6g %.4g %.3g %.3f\n", run.method.c_str(), run.K,
                  run.D, status.c_str(), stop_time(res, h), e.gain, e.final_change, lowest_z(scene, last), min_z,
                  max_abs_strain(scene, last), res.newton_iterations_per_step(), res.wall_seconds);
-    std::printf("%-17s %5g %4g  %-9s %8.4g %11.4g %11.4g %8.4g %8.4g %10.4g\n", run.method.c_str(), run.K, run.D,
-                status.c_str(), stop_time(res, h), e.gain, e.final_change, lowest_z(scene, last), min_z,
-                max_abs_strain(scene, last));
+    std::printf("%-17s %5g %4g  %-9s %8s %11.4g %11.4g %8.4g %8.4g %10.4g\n", run.method.c_str(), run.K, run.D,
+                status.c_str(), diverged(res) ? format_number(stop_time(res, h), 4).c_str() : "-", e.gain,
+                e.final_change, lowest_z(scene, last), min_z, max_abs_strain(scene, last));
 
     const bool bounded = !diverged(res);
+    const std::string rise =
+        bounded && e.gain > 0 ? format_number(e.rise_from, 3) + " to " + format_number(e.rise_to, 3) : "";
     page_table.add_row({title_of(run.method), format_number(run.K), format_number(run.D),
-                        bounded ? outcome(res) : ended(res, h), bounded ? format_number(e.gain, 3) : "",
+                        bounded ? outcome(res) : ended(res, h), bounded ? format_number(e.gain, 3) : "", rise,
                         bounded ? format_number(e.final_change, 3) : "", bounded ? format_number(min_z, 3) : ""});
 
     // Energy and sag against time, one line per step.
     OutputFile series(dir + "series_" + name + ".dat");
-    std::fprintf(series.get(), "# %s K=%g D=%g: t[s] E_total[J] E/E(0) lowest_z[m]\n", run.method.c_str(), run.K,
-                 run.D);
-    const double e0 = res.energy.front().energy.total();
+    std::fprintf(series.get(), "# %s K=%g D=%g: t[s] E_total[J] E/E_ref lowest_z[m]  (E_ref = %s)\n",
+                 run.method.c_str(), run.K, run.D, reference.description().c_str());
     for (std::size_t k = 0; k < res.energy.size() && k < res.frames.size(); ++k)
       std::fprintf(series.get(), "%.6g %.10g %.10g %.8g\n", res.energy[k].t, res.energy[k].energy.total(),
-                   res.energy[k].energy.total() / e0, lowest_z(scene, res.frames[k].positions));
+                   res.energy[k].energy.total() / reference.joules, lowest_z(scene, res.frames[k].positions));
     series.commit();
 
     // The strain-coloured structural mesh every T / movie_frames, then the last sane state if the run stopped.
@@ -110,7 +116,8 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
     mesh.commit();
 
     const std::string title = find_method(run.method).title;
-    const std::string ending = diverged(res) ? ended(res, h) : "bounded, max E/E(0) = " + format_number(e.peak, 3);
+    const std::string ending =
+        diverged(res) ? ended(res, h) : "bounded, max E/" + ratio + " = " + format_number(e.peak, 3);
     std::fprintf(table.get(), "%zu %s %s %s %d %s", r + 1, name.c_str(), quoted(title).c_str(), quoted(ending).c_str(),
                  blocks, format_number(res.t, 4).c_str());
     for (int a = 0; a < 3; ++a)
@@ -128,7 +135,8 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
   }
   summary.commit();
   table.commit();
-  write_table_fragment(dir + "summary.md", page_table, settings.command);
+  write_text_fragment(dir + "summary.md", "Energies relative to " + reference.description() + ".\n\n" +
+                                             page_table.markdown() + "\n" + measured_by_line(settings.command));
   instants.commit();
 
   // Per case: a log energy axis when some method's energy grew tenfold, and a sag range that shows the bounded
@@ -140,7 +148,7 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
     double worst_gain = 0, low = 0;
     for (std::size_t m = 0; m < methods.size(); ++m) {
       const RunResult& res = runs[m * cases + c].result;
-      const double gain = energy_measures(res.energy).gain;
+      const double gain = energy_measures(res.energy, reference).gain;
       worst_gain = std::max(worst_gain, gain);
       if (!diverged(res) && gain < 1.0)
         for (const Frame& f : res.frames) low = std::min(low, lowest_z(base_scene, f.positions));
@@ -163,8 +171,11 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
   figures.commit();
 
   OutputFile parameters(dir + "parameters.dat");
-  std::fprintf(parameters.get(), "# h[s] t_end[s] sweep_t_end_implicit[s] methods cases instants\n%g %g %g %zu %zu %zu\n",
-               h, T, settings.sweep_t_end_implicit, methods.size(), cases, sheet_fractions.size());
+  std::fprintf(parameters.get(),
+               "# h[s] t_end[s] sweep_t_end_implicit[s] methods cases instants E_ref[J] E_ref_is_E0 (1: E_ref = E(0), "
+               "the launch's kinetic energy; 0: W L, the cloth starts at rest)\n%g %g %g %zu %zu %zu %.6g %d\n",
+               h, T, settings.sweep_t_end_implicit, methods.size(), cases, sheet_fractions.size(), reference.joules,
+               reference.launch ? 1 : 0);
   parameters.commit();
 }
 

@@ -41,9 +41,13 @@ int main(int argc, char** argv) {
     prepare_outputs(opt.run.out_dir, ch05::output_names(settings.sweep), ch05::output_names(true));
 
     const std::vector<ch05::Run> runs = ch05::run_all(opt, settings);
-    ch05::write_figure_data(runs, opt, settings);
-    ch05::write_theory(runs, opt);
-    if (settings.sweep) ch05::write_sweep(runs, opt);
+    // Every run has the same E(0): K and D do not enter the launch.
+    const ch05::EnergyReference reference =
+        ch05::energy_reference(opt.scene, runs.front().result.energy.front().energy.total());
+    ch05::write_figure_data(runs, opt, settings, reference);
+    ch05::write_theory(runs, opt, settings);
+    ch05::write_growth(runs, opt, settings, reference);
+    if (settings.sweep) ch05::write_sweep(runs, opt, settings, reference);
     return 0;
   });
 }

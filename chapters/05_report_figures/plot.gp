@@ -3,7 +3,11 @@
 # Called as: gnuplot -e "data='DIR'; plots='DIR'" plot.gp. Beside the meshes and series the program writes small
 # tables that say which block of each mesh file to draw and what the labels say; they are read into arrays first.
 stats data.'/parameters.dat' using (h = $1, t_end = $2, sweep_t_end_implicit = $3, nmethods = int($4), nconfigs = int($5), \
-                                    ninstants = int($6), 0) nooutput
+                                    ninstants = int($6), e_ref = $7, e_ref_is_e0 = int($8), 0) nooutput
+# The energy the ratios are relative to: E(0), the launch's kinetic energy, or for a cloth dropped from rest
+# (E(0) = 0) W L, the potential energy its weight loses in falling by its side.
+ref_name = e_ref_is_e0 ? "E(0)" : "E_{ref}"
+ref_label = e_ref_is_e0 ? sprintf("E(0) = %.3g kJ", e_ref / 1000) : sprintf("E_{ref} = W L = %.3g kJ (E(0) = 0)", e_ref / 1000)
 nruns = nmethods * nconfigs
 # runs.dat: run name "method" "status" mesh_blocks t_reached xmin xmax ymin ymax zmin zmax (run = m * nconfigs + c)
 array run_name[nruns]; array run_method[nruns]; array run_status[nruns]; array run_blocks[nruns]
@@ -106,12 +110,12 @@ set terminal pngcairo size 1500,520 enhanced font "Sans,11"
 set grid
 set key top left
 set output plots.'/ch05_energy.png'
-set multiplot layout 1, nconfigs title sprintf("Total energy E(t) / E(0), E(0) = 79.2 kJ, h = %g s (a curve ends where its run diverged)", h) font ",13"
+set multiplot layout 1, nconfigs title sprintf("Total energy E(t) / %s, %s, h = %g s (a curve ends where its run diverged)", ref_name, ref_label, h) font ",13"
 do for [c = 1:nconfigs] {
   set title sprintf("K = %g N/m, D = %g N s/m", cfg_K[c], cfg_D[c])
   if (cfg_logscale[c]) { set logscale y; set format y "10^{%T}"; set yrange [*:*] } else { unset logscale y; set format y "%g" }
   set xlabel "t [s]"
-  set ylabel "E(t) / E(0)" . (cfg_logscale[c] ? " (log scale)" : "")
+  set ylabel "E(t) / " . ref_name . (cfg_logscale[c] ? " (log scale)" : "")
   plot for [m = 1:nmethods] series(run_index(m, c)) using 1:3 with lines lw 2 lc rgb method_color(m) title run_method[run_index(m, c)]
 }
 unset multiplot
@@ -178,14 +182,14 @@ set ylabel "D [N s/m]"
 set tics nomirror
 unset key
 array sweep_title[4] = ["explicit Euler", "symplectic Euler", "RK4", "implicit Euler"]
-# Gain: log10 of max_t (E(t) - E(0))/|E(0)|, floored at 1e-8 (a method that never added energy shows 0 there).
+# Gain: log10 of max_{s <= t} (E(t) - E(s))/E_ref, floored at 1e-8 (a method that never added energy shows 0 there).
 gain_colour(g) = log10(g > 1e-8 ? g : 1e-8)
 # (The cell texts are written inline: gnuplot 5.4 mislabels `with labels` when the text comes from a user function.)
 set palette defined (-8 "#f7fbff", -6 "#c6dbef", -4 "#6baed6", -2 "#fdae6b", 0 "#e6550d", 2 "#7f2704")
 
 set terminal pngcairo size 1400,900 enhanced font "Sans,11"
 set output plots.'/ch05_sweep_gain.png'
-set multiplot layout 2,2 title sprintf("Energy gain max_{s <= t} (E(t) - E(s))/|E(0)| over the K x D sweep, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 The exact solution's energy never rises (constant for D = 0, falling for D > 0): any rise is the method's error. Grey: the run diverged or a step failed.}", h, t_end, sweep_t_end_implicit) font ",12"
+set multiplot layout 2,2 title sprintf("Energy gain max_{s <= t} (E(t) - E(s))/%s over the K x D sweep, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 The exact solution's energy never rises (constant for D = 0, falling for D > 0): any rise is the method's error. Grey: the run diverged or a step failed.}", ref_name, h, t_end, sweep_t_end_implicit) font ",12"
 set cbrange [-8:2]
 set cbtics ("≤1e-8" -8, "1e-6" -6, "1e-4" -4, "0.01" -2, "1" 0, "100" 2)
 unset cblabel
@@ -198,7 +202,7 @@ do for [m = 0:3] {
 unset multiplot
 
 set output plots.'/ch05_sweep_final.png'
-set multiplot layout 2,2 title sprintf("Energy at the end relative to the start, (E(T) - E(0))/|E(0)|, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 Negative: energy lost (dampers, or the method's numerical damping); positive: energy gained. Grey: diverged or a step failed.}", h, t_end, sweep_t_end_implicit) font ",12"
+set multiplot layout 2,2 title sprintf("Energy at the end relative to the start, (E(T) - E(0))/%s, h = %g s, T = %g s (implicit Euler: T = %g s)\n{/*0.8 Negative: energy lost (dampers, or the method's numerical damping); positive: energy gained. Grey: diverged or a step failed.}", ref_name, h, t_end, sweep_t_end_implicit) font ",12"
 set palette defined (-1 "#08519c", -0.3 "#6baed6", 0 "#f7f7f7", 0.3 "#fc9272", 1 "#a50f15")
 set cbrange [-1:1]
 set cbtics ("≤ -1" -1, "-0.5" -0.5, "0" 0, "0.5" 0.5, "≥ 1" 1)

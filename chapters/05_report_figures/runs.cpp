@@ -19,9 +19,10 @@ namespace ch05 {
 using namespace cloth;
 
 std::vector<std::string> output_names(bool sweep) {
-  std::vector<std::string> names = {"summary.dat", "summary.md",     "runs.dat",  "instants.dat",
-                                    "cases.dat",   "parameters.dat", "figures.dat", "theory.txt"};
-  if (sweep) names.emplace_back("sweep.dat");
+  std::vector<std::string> names = {"summary.dat", "summary.md",  "runs.dat",   "instants.dat",
+                                    "cases.dat",   "parameters.dat", "figures.dat", "theory.txt",
+                                    "theory.md",   "deformed_damping.md", "growth.md"};
+  if (sweep) names.insert(names.end(), {"sweep.dat", "sweep.md", "sweep_implicit.md"});
   for (const std::string& m : methods)
     for (const ReportCase& c : report_cases) {
       const std::string name = run_name({m, c.K, c.D, 0, true, {}});
@@ -111,24 +112,50 @@ const Run& sweep_run(const std::vector<Run>& runs, std::size_t m, std::size_t k,
 
 std::string run_name(const Run& run) { return run.method + "_" + ReportCase{run.K, run.D}.name(); }
 
+EnergyReference energy_reference(const SceneParams& scene, double e0) {
+  if (e0 != 0) return {std::abs(e0), true};
+  // A cloth dropped from rest has E(0) = 0 (no speed, z = 0, springs at rest length), and a ratio to it is
+  // infinite. The scale is then one the scene sets for every method alike: W L, the potential energy the cloth's
+  // weight W loses in falling by its own side L.
+  const Scene s(scene);
+  const double weight = s.free_count() * scene.mass * scene.gravity;
+  const double side = (std::max(scene.grid.M, scene.grid.N) - 1) * scene.grid.d;
+  return {weight * side, false};
+}
+
+std::string EnergyReference::description() const {
+  const std::string value = format_number(joules / 1000, 3) + " kJ";
+  return launch ? "E(0) = " + value + ", the launch's kinetic energy"
+                : "W L = " + value + ", the potential energy the cloth's weight W loses in falling by its side L "
+                  "(the cloth starts at rest: E(0) = 0)";
+}
+
 // [energy_measures]
-// What the figures and tables say of a run's energy, relative to E(0) (the launch's kinetic energy, 79.2 kJ):
-//   gain  = max over s <= t of (E(t) - E(s)) / |E(0)|, the largest rise of the energy over any stretch of the run,
+// What the figures and tables say of a run's energy, relative to E_ref (E(0), the launch's kinetic energy):
+//   gain  = max over s <= t of (E(t) - E(s)) / E_ref, the largest rise of the energy over any stretch of the run,
 //           >= 0. The exact solution's energy never rises (it is constant for D = 0 and falls for D > 0), so any
 //           rise is the method's error, also one that starts after the dampers took the energy below E(0).
-//   final = (E(T) - E(0)) / |E(0)|: negative when energy was lost, by the dampers or by the method.
-//   peak  = max over t of E(t) / E(0).
-EnergyMeasures energy_measures(const std::vector<EnergySample>& energy) {
+//   final = (E(T) - E(0)) / E_ref: negative when energy was lost, by the dampers or by the method.
+//   peak  = max over t of E(t) / E_ref.
+EnergyMeasures energy_measures(const std::vector<EnergySample>& energy, const EnergyReference& reference) {
   EnergyMeasures m;
-  const double e0 = energy.front().energy.total();
-  double lowest_so_far = e0;
+  const double e0 = energy.front().energy.total(), scale = reference.joules;
+  m.peak = e0 / scale;
+  double lowest_so_far = e0, lowest_at = energy.front().t;
   for (const EnergySample& s : energy) {
     const double e = s.energy.total();
-    lowest_so_far = std::min(lowest_so_far, e);
-    m.gain = std::max(m.gain, (e - lowest_so_far) / std::abs(e0));
-    m.peak = std::max(m.peak, e / e0);
+    if (e < lowest_so_far) {
+      lowest_so_far = e;
+      lowest_at = s.t;
+    }
+    if ((e - lowest_so_far) / scale > m.gain) {
+      m.gain = (e - lowest_so_far) / scale;
+      m.rise_from = lowest_at;
+      m.rise_to = s.t;
+    }
+    m.peak = std::max(m.peak, e / scale);
   }
-  m.final_change = (energy.back().energy.total() - e0) / std::abs(e0);
+  m.final_change = (energy.back().energy.total() - e0) / scale;
   return m;
 }
 // [energy_measures]

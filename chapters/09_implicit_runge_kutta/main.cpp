@@ -10,6 +10,7 @@
 #include "integrators/simulate.hpp"
 #include "program/fragment.hpp"
 #include "program/limits.hpp"
+#include "program/method_tables.hpp"
 #include "program/output.hpp"
 #include "program/run_outputs.hpp"
 
@@ -255,10 +256,13 @@ void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, c
                  const std::string& command) {
   const std::string dir = opt.run.out_dir;
   // Every output of the studies, checked before the first run starts (a folder in the way is bad input).
-  std::vector<std::string> outputs = {"energy_summary.dat", "orders.dat", "work_precision.dat"};
+  std::vector<std::string> outputs = {"energy_summary.dat", "orders.dat", "work_precision.dat", "methods.md",
+                                      "energy_summary.md",  "orders.md",  "work_precision.md"};
   for (const MethodChoice& m : study_methods(newton))
     for (const std::string& name : run_output_names()) outputs.push_back("energy_" + m.argument + "/" + name);
   prepare_outputs(dir, outputs);
+  // The page's table of the implicit rows of the registry: computed from their tableaus, not measured.
+  write_text_fragment(dir + "/methods.md", implicit_method_table().markdown());
   energy_study(opt, newton, dir, program, command);
 
   SceneParams report = opt.scene;

@@ -91,10 +91,11 @@ Complex sdirk2_stability_function(Complex z) {
 }
 
 // A row of the diagonally implicit family: its coefficients and source are in implicit_tableaus.cpp.
-Method diagonally_implicit(const char* name, const char* title, Complex (*stability)(Complex)) {
+Method diagonally_implicit(const char* name, const char* title, const char* description,
+                           Complex (*stability)(Complex)) {
   const ImplicitTableau& t = builtin_implicit_tableau(name);
-  return {name, title, MethodFamily::implicit_runge_kutta, t.method.order, t.method, stability,
-          make_diagonally_implicit};
+  return {name,      title,     description, MethodFamily::implicit_runge_kutta, t.method.order, t.method,
+          stability, make_diagonally_implicit};
 }
 
 std::unique_ptr<Stepper> make_local_global(const Method& /*m*/, ForceField& field, const MethodSettings& settings) {
@@ -102,11 +103,11 @@ std::unique_ptr<Stepper> make_local_global(const Method& /*m*/, ForceField& fiel
 }
 
 // A row of the explicit Runge-Kutta family: the tableau carries the method's name and order.
-Method explicit_runge_kutta(const char* name, const char* title, int order,
+Method explicit_runge_kutta(const char* name, const char* title, const char* description, int order,
                             std::initializer_list<std::initializer_list<double>> A, std::initializer_list<double> b,
                             Complex (*stability)(Complex)) {
-  return {name, title, MethodFamily::explicit_runge_kutta, order, tableau(name, order, A, b), stability,
-          make_explicit_runge_kutta};
+  return {name,  title, description, MethodFamily::explicit_runge_kutta, order, tableau(name, order, A, b),
+          stability, make_explicit_runge_kutta};
 }
 
 std::unique_ptr<Stepper> make_embedded_runge_kutta(const Method& m, ForceField& field,
@@ -120,8 +121,8 @@ using Row = std::initializer_list<double>;
 // A row of the embedded Runge-Kutta family (Chapter 8) from its strictly lower triangle (row i holds a_i1 ..
 // a_i,i-1; the first row is empty), the weights b that advance the solution and the weights b-hat that only
 // measure; c is the row sums of A. `order` is the order of b, `embedded_order` that of b-hat.
-Method embedded_pair(const char* name, const char* title, int order, int embedded_order, std::initializer_list<Row> lower,
-                     Row b, Row b_hat, Complex (*stability)(Complex) = nullptr) {
+Method embedded_pair(const char* name, const char* title, const char* description, int order, int embedded_order,
+                     std::initializer_list<Row> lower, Row b, Row b_hat, Complex (*stability)(Complex) = nullptr) {
   ButcherTableau t;
   t.name = name;
   t.order = order;
@@ -137,7 +138,7 @@ Method embedded_pair(const char* name, const char* title, int order, int embedde
   t.b = Eigen::Map<const Eigen::VectorXd>(b.begin(), s);
   t.b_hat = Eigen::Map<const Eigen::VectorXd>(b_hat.begin(), s);
   t.c = t.A.rowwise().sum();
-  return {name, title, MethodFamily::embedded_runge_kutta, order, t, stability, make_embedded_runge_kutta};
+  return {name, title, description, MethodFamily::embedded_runge_kutta, order, t, stability, make_embedded_runge_kutta};
 }
 
 // Tsitouras (2011), "Runge-Kutta pairs of order 5(4) satisfying only the first column simplifying assumption",
@@ -148,7 +149,8 @@ Method tsitouras5() {
                  2.324710524099774, 0};
   const double e[] = {0.0017800110522257773, 0.0008164344596567463, -0.007880878010261994, 0.1447110071732629,
                       -0.5823571654525552,  0.45808210592918686,   -1.0 / 66};
-  Method m = embedded_pair("tsit5", "Tsitouras 5(4)", 5, 4,
+  Method m = embedded_pair("tsit5", "Tsitouras 5(4)",
+                           "first same as last, small fifth-order error (\\ref ref_tsitouras2011 \"Tsitouras 2011\")", 5, 4,
                            {{},
                             {0.161},
                             {-0.008480655492356989, 0.335480655492357},
@@ -169,36 +171,38 @@ const std::vector<Method>& methods() {
   static const std::vector<Method> table = {
       // [explicit_euler_row]
       // Explicit Euler (Chapter 2): one stage at the start of the step, x1 = x0 + h v0, v1 = v0 + h a(x0, v0).
-      explicit_runge_kutta("explicit_euler", "explicit Euler", 1, {{0}}, {1}, taylor_of_exp<1>),
+      explicit_runge_kutta("explicit_euler", "explicit Euler", "forward Euler, Chapter 2's method", 1, {{0}}, {1}, taylor_of_exp<1>),
       // [explicit_euler_row]
       // Symplectic Euler (Chapter 2) is a partitioned method: v1 = v0 + h a(x0, v0) is explicit Euler for v, and
       // x1 = x0 + h v1 is implicit Euler for x (tableau [1] for x, [0] for v). No single tableau describes it, so
       // it has a stepper of its own, and no scalar R(z): on a mode it acts as a 2 x 2 matrix (Chapter 7).
-      {"symplectic_euler", "symplectic Euler", MethodFamily::partitioned, 1, std::nullopt, nullptr,
+      {"symplectic_euler", "symplectic Euler", "explicit Euler for v, then implicit Euler for x", MethodFamily::partitioned, 1, std::nullopt, nullptr,
        make_symplectic_euler},
       // [runge_kutta_rows]
       // Chapter 3's explicit Runge-Kutta methods (Butcher 2016, Hairer, Norsett & Wanner 1993, II.1).
-      explicit_runge_kutta("heun", "Heun", 2, {{0, 0}, {1, 0}}, {0.5, 0.5}, taylor_of_exp<2>),
-      explicit_runge_kutta("midpoint", "explicit midpoint", 2, {{0, 0}, {0.5, 0}}, {0, 1}, taylor_of_exp<2>),
-      explicit_runge_kutta("kutta3", "Kutta's third order", 3, {{0, 0, 0}, {0.5, 0, 0}, {-1, 2, 0}},
+      explicit_runge_kutta("heun", "Heun", "trapezoidal predictor-corrector", 2, {{0, 0}, {1, 0}}, {0.5, 0.5}, taylor_of_exp<2>),
+      explicit_runge_kutta("midpoint", "explicit midpoint", "the slope at the midpoint of an Euler half step", 2, {{0, 0}, {0.5, 0}}, {0, 1}, taylor_of_exp<2>),
+      explicit_runge_kutta("kutta3", "Kutta's third order", "Kutta's third-order method", 3, {{0, 0, 0}, {0.5, 0, 0}, {-1, 2, 0}},
                            {1.0 / 6, 2.0 / 3, 1.0 / 6}, taylor_of_exp<3>),
-      explicit_runge_kutta("rk4", "RK4", 4, {{0, 0, 0, 0}, {0.5, 0, 0, 0}, {0, 0.5, 0, 0}, {0, 0, 1, 0}},
+      explicit_runge_kutta("rk4", "RK4", "the classic method, the report's table", 4, {{0, 0, 0, 0}, {0.5, 0, 0, 0}, {0, 0.5, 0, 0}, {0, 0, 1, 0}},
                            {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}, taylor_of_exp<4>),
-      explicit_runge_kutta("rule38", "3/8 rule", 4, {{0, 0, 0, 0}, {1.0 / 3, 0, 0, 0}, {-1.0 / 3, 1, 0, 0}, {1, -1, 1, 0}},
+      explicit_runge_kutta("rule38", "3/8 rule", "Kutta's 3/8 rule", 4, {{0, 0, 0, 0}, {1.0 / 3, 0, 0, 0}, {-1.0 / 3, 1, 0, 0}, {1, -1, 1, 0}},
                            {1.0 / 8, 3.0 / 8, 3.0 / 8, 1.0 / 8}, taylor_of_exp<4>),
       // [runge_kutta_rows]
       // [embedded_pairs]
       // Chapter 8's embedded pairs: two weight rows over one set of stages, b advancing the solution and b-hat
       // measuring its local error, each transcribed from the paper that published it.
       // Heun's method with explicit Euler inside it: the simplest pair (its estimate is the Euler step's error).
-      embedded_pair("heun_euler", "Heun-Euler 2(1)", 2, 1, {{}, {1}}, {1.0 / 2, 1.0 / 2}, {1, 0}, taylor_of_exp<2>),
+      embedded_pair("heun_euler", "Heun-Euler 2(1)", "Heun's method with explicit Euler inside it", 2, 1, {{}, {1}}, {1.0 / 2, 1.0 / 2}, {1, 0}, taylor_of_exp<2>),
       // Bogacki & Shampine (1989), "A 3(2) pair of Runge-Kutta formulas", Appl. Math. Lett. 2(4): first same as
       // last, so three evaluations per step; its b has three nonzero weights, so R(z) is Kutta's.
-      embedded_pair("bs32", "Bogacki-Shampine 3(2)", 3, 2, {{}, {1.0 / 2}, {0, 3.0 / 4}, {2.0 / 9, 1.0 / 3, 4.0 / 9}},
+      embedded_pair("bs32", "Bogacki-Shampine 3(2)",
+                    "first same as last (\\ref ref_bogacki1989 \"Bogacki & Shampine 1989\")", 3, 2, {{}, {1.0 / 2}, {0, 3.0 / 4}, {2.0 / 9, 1.0 / 3, 4.0 / 9}},
                     {2.0 / 9, 1.0 / 3, 4.0 / 9, 0}, {7.0 / 24, 1.0 / 4, 1.0 / 3, 1.0 / 8}, taylor_of_exp<3>),
       // Fehlberg (1969), NASA TR R-315, "Low-order classical Runge-Kutta formulas with stepsize control", Table
       // III: the pair RKF4(5), which advances with its fourth-order row as Fehlberg intended.
-      embedded_pair("rkf45", "Fehlberg 4(5)", 4, 5,
+      embedded_pair("rkf45", "Fehlberg 4(5)", "advances with its fourth-order row (\\ref ref_fehlberg1969 \"Fehlberg 1969\")",
+                    4, 5,
                     {{},
                      {1.0 / 4},
                      {3.0 / 32, 9.0 / 32},
@@ -209,7 +213,8 @@ const std::vector<Method>& methods() {
                     {16.0 / 135, 0, 6656.0 / 12825, 28561.0 / 56430, -9.0 / 50, 2.0 / 55}),
       // Cash & Karp (1990), "A variable order Runge-Kutta method for initial value problems with rapidly varying
       // right-hand sides", ACM TOMS 16(3): advanced with the fifth-order row, as Numerical Recipes and odeint do.
-      embedded_pair("cash_karp", "Cash-Karp 5(4)", 5, 4,
+      embedded_pair("cash_karp", "Cash-Karp 5(4)",
+                    "advances with its fifth-order row (\\ref ref_cash1990 \"Cash & Karp 1990\")", 5, 4,
                     {{},
                      {1.0 / 5},
                      {3.0 / 40, 9.0 / 40},
@@ -220,7 +225,8 @@ const std::vector<Method>& methods() {
                     {2825.0 / 27648, 0, 18575.0 / 48384, 13525.0 / 55296, 277.0 / 14336, 1.0 / 4}),
       // Dormand & Prince (1980), "A family of embedded Runge-Kutta formulae", J. Comput. Appl. Math. 6(1), the pair
       // RK5(4)7M: seven stages of which the last is the next step's first (FSAL), so six evaluations per step.
-      embedded_pair("dopri5", "Dormand-Prince 5(4)", 5, 4,
+      embedded_pair("dopri5", "Dormand-Prince 5(4)",
+                    "first same as last (\\ref ref_dormand1980 \"Dormand & Prince 1980\")", 5, 4,
                     {{},
                      {1.0 / 5},
                      {3.0 / 40, 9.0 / 40},
@@ -236,25 +242,28 @@ const std::vector<Method>& methods() {
       // Implicit Euler (Chapter 4): the one-stage tableau A = [1], b = [1]. Its stepper is Chapter 4's Newton
       // solver for that one stage; NewtonSettings choose the variant (full, one), the linear solver and the
       // Jacobian treatment.
-      {"implicit_euler", "implicit Euler", MethodFamily::implicit_runge_kutta, 1,
+      {"implicit_euler", "implicit Euler", "backward Euler, Chapter 4's method", MethodFamily::implicit_runge_kutta, 1,
        builtin_implicit_tableau("implicit_euler").method, implicit_euler_stability_function, make_implicit_euler},
       // [implicit_rows]
       // Chapter 9's diagonally implicit methods, each stage an implicit Euler equation for StageNewton.
-      diagonally_implicit("implicit_midpoint", "implicit midpoint", pade11),
-      diagonally_implicit("trapezoid", "trapezoidal rule", pade11),
-      diagonally_implicit("sdirk2", "SDIRK2", sdirk2_stability_function),
-      diagonally_implicit("sdirk3", "SDIRK3", nullptr),
-      diagonally_implicit("trbdf2", "TR-BDF2", nullptr),
+      diagonally_implicit("implicit_midpoint", "implicit midpoint", "the one-stage Gauss method", pade11),
+      diagonally_implicit("trapezoid", "trapezoidal rule", "\\ref ref_crank1947 \"Crank & Nicolson 1947\"", pade11),
+      diagonally_implicit("sdirk2", "SDIRK2", "γ = 1 - √2/2 (\\ref ref_alexander1977 \"Alexander 1977\")",
+                          sdirk2_stability_function),
+      diagonally_implicit("sdirk3", "SDIRK3", "γ = 0.4358665215 (\\ref ref_alexander1977 \"Alexander 1977\")", nullptr),
+      diagonally_implicit("trbdf2", "TR-BDF2",
+                          "step control (\\ref ref_hosea1996 \"Hosea & Shampine 1996\")", nullptr),
       // [implicit_rows]
       // Local/global (Chapter 10; Liu, Bargteil, O'Brien & Kavan 2013): implicit Euler's step again, its equations
       // solved by a fixed number of alternating spring projections and solves with a constant matrix instead of
       // Newton's method. Converged, it is implicit Euler; with few iterations it is a method of its own, so it
       // has no tableau and no scalar R(z) here.
-      {"local_global", "local/global", MethodFamily::implicit_runge_kutta, 1, std::nullopt, nullptr,
+      {"local_global", "local/global", "implicit Euler's step by spring projections and constant-matrix solves",
+       MethodFamily::implicit_runge_kutta, 1, std::nullopt, nullptr,
        make_local_global},
       // BDF2 (Chapter 9): a two-step method, so no tableau and no scalar R(z); its one implicit equation per step
       // is a stage equation for StageNewton (Choi & Ko 2002 use it for cloth).
-      {"bdf2", "BDF2", MethodFamily::multistep, 2, std::nullopt, nullptr, make_bdf2},
+      {"bdf2", "BDF2", "the two-step backward differentiation formula", MethodFamily::multistep, 2, std::nullopt, nullptr, make_bdf2},
   };
   return table;
 }

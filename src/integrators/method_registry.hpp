@@ -1,6 +1,6 @@
 // The book's time integrators, each named once, in one table in the spirit of SUNDIALS ARKODE's catalogue of
-// Butcher tables: its name, its title for legends, its family, its tableau, its order, its stability function and
-// the factory that makes its Stepper. Every program, test and chapter takes its methods from here; a chapter that
+// Butcher tables: its name, its title for legends, its family, its tableau, its order, its stability function,
+// the factory that makes its Stepper, and a line describing it for the book's tables. Every program, test and chapter takes its methods from here; a chapter that
 // brings a new method adds a row.
 #pragma once
 
@@ -42,6 +42,10 @@ struct MethodSettings {
 struct Method {
   std::string name;     ///< what programs, files and run.txt call it: "rk4"
   std::string title;    ///< what legends and tables print: "RK4"
+  /// One line for the book's method tables (Doxygen Markdown; a citation links to the references page). What
+  /// the tableau determines (stages, order, stiff accuracy, R(infinity), stability) is computed, never written
+  /// here: analysis/tableau_properties.hpp.
+  std::string description;
   MethodFamily family;
   int order;            ///< the order it claims; tests check it against its tableau and against measurement
   /// Its Butcher tableau (A, b, c), with the same name and order, where the method has one.
