@@ -58,7 +58,7 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
   }().c_str());
   // The page's table (summary.md): the same rows, as a reader reads them.
   const std::string ratio = reference.launch ? "E(0)" : "E_ref";
-  MarkdownTable page_table({"method", "K", "D", "outcome", "energy gain", "largest rise, from t to t [s]",
+  MarkdownTable page_table({"method", "K", "D", "outcome", "energy gain", "stretch of the largest rise [s]",
                             reference.launch ? "E(T)/E(0) - 1" : "(E(T) - E(0))/E_ref", "lowest z over the run [m]"},
                            "lrrlrrrr");
   std::printf("\nEnergies relative to %s\n", reference.description().c_str());

@@ -59,7 +59,7 @@ void write_sweep(const std::vector<Run>& runs, const Options& opt, const Setting
         const RunResult& res = sweep_run(runs, m, k, d).result;
         row.push_back(res.status != RunStatus::ok
                           ? outcome(res) + " at " + format_number(stop_time(res, h), 3) + " s"
-                          : format_number(energy_measures(res.energy, reference).gain, 2));
+                          : format_number(energy_measures(res.energy, reference).gain, 3));
       }
       table.add_row(row);
     }
