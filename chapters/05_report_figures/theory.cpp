@@ -55,8 +55,10 @@ void write_theory(const std::vector<Run>& runs, const Options& opt, const Settin
   const double h = opt.run.dt, T = opt.run.t_end, m = sp.mass;
   const double mu = rest_stiffness_mu_max(sp);
   OutputFile theory(opt.run.out_dir + "/theory.txt");
-  std::fprintf(theory.get(), "mu_max = %.6g  # largest eigenvalue of L = sum u u^T at rest: omega_max = sqrt(K mu_max / m), "
-               "c_max = D mu_max / m\n", mu);
+  std::fprintf(theory.get(),
+               "mu_max = %.6g  # largest eigenvalue of L = sum u u^T at rest: omega_max = sqrt(K mu_max / m), "
+               "c_max = D mu_max / m\n",
+               mu);
   std::printf("\nrest state: mu_max = %.4g (largest eigenvalue of L = sum u u^T; omega_max = sqrt(K mu_max / m), "
               "c_max = D mu_max / m)\n", mu);
   std::printf("%5s %4s %10s %9s %15s %15s %9s\n", "K", "D", "omega_max", "h omega", "EE factor/step", "factor^(T/h)",
@@ -126,8 +128,8 @@ void write_growth(const std::vector<Run>& runs, const Options& opt, const Settin
     while (first + 1 < e.size() && e[first].t < 0.75 * t_end) ++first;
     const double steps = static_cast<double>(e.size() - 1 - first);
     const double start = e[first].energy.total(), end = e.back().energy.total();
-    table.add_row({"K = " + format_number(run.K) + ", D = 0", format_fixed(1 + ho * ho, 3), format_number(e[first].t, 3),
-                   format_number(t_end, 3), format_number(start / reference.joules, 3),
+    table.add_row({"K = " + format_number(run.K) + ", D = 0", format_fixed(1 + ho * ho, 3),
+                   format_number(e[first].t, 3), format_number(t_end, 3), format_number(start / reference.joules, 3),
                    format_number(end / reference.joules, 3),
                    steps > 0 && start > 0 && end > 0 ? format_fixed(std::pow(end / start, 1 / steps), 3) : "n/a"});
   }

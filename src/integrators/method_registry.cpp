@@ -138,7 +138,8 @@ Method embedded_pair(const char* name, const char* title, const char* descriptio
   t.b = Eigen::Map<const Eigen::VectorXd>(b.begin(), s);
   t.b_hat = Eigen::Map<const Eigen::VectorXd>(b_hat.begin(), s);
   t.c = t.A.rowwise().sum();
-  return {name, title, description, MethodFamily::embedded_runge_kutta, order, t, stability, make_embedded_runge_kutta};
+  return {name,  title,     description, MethodFamily::embedded_runge_kutta, order,
+          t,     stability, make_embedded_runge_kutta};
 }
 
 // Tsitouras (2011), "Runge-Kutta pairs of order 5(4) satisfying only the first column simplifying assumption",
@@ -150,7 +151,9 @@ Method tsitouras5() {
   const double e[] = {0.0017800110522257773, 0.0008164344596567463, -0.007880878010261994, 0.1447110071732629,
                       -0.5823571654525552,  0.45808210592918686,   -1.0 / 66};
   Method m = embedded_pair("tsit5", "Tsitouras 5(4)",
-                           "first same as last, small fifth-order error (\\ref ref_tsitouras2011 \"Tsitouras 2011\")", 5, 4,
+                           "first same as last, small fifth-order error "
+                           "(\\ref ref_tsitouras2011 \"Tsitouras 2011\")",
+                           5, 4,
                            {{},
                             {0.161},
                             {-0.008480655492356989, 0.335480655492357},
@@ -171,38 +174,46 @@ const std::vector<Method>& methods() {
   static const std::vector<Method> table = {
       // [explicit_euler_row]
       // Explicit Euler (Chapter 2): one stage at the start of the step, x1 = x0 + h v0, v1 = v0 + h a(x0, v0).
-      explicit_runge_kutta("explicit_euler", "explicit Euler", "forward Euler, Chapter 2's method", 1, {{0}}, {1}, taylor_of_exp<1>),
+      explicit_runge_kutta("explicit_euler", "explicit Euler", "forward Euler, Chapter 2's method", 1,
+                           {{0}}, {1}, taylor_of_exp<1>),
       // [explicit_euler_row]
       // Symplectic Euler (Chapter 2) is a partitioned method: v1 = v0 + h a(x0, v0) is explicit Euler for v, and
       // x1 = x0 + h v1 is implicit Euler for x (tableau [1] for x, [0] for v). No single tableau describes it, so
       // it has a stepper of its own, and no scalar R(z): on a mode it acts as a 2 x 2 matrix (Chapter 7).
-      {"symplectic_euler", "symplectic Euler", "explicit Euler for v, then implicit Euler for x", MethodFamily::partitioned, 1, std::nullopt, nullptr,
+      {"symplectic_euler", "symplectic Euler", "explicit Euler for v, then implicit Euler for x",
+       MethodFamily::partitioned, 1, std::nullopt, nullptr,
        make_symplectic_euler},
       // [runge_kutta_rows]
       // Chapter 3's explicit Runge-Kutta methods (Butcher 2016, Hairer, Norsett & Wanner 1993, II.1).
-      explicit_runge_kutta("heun", "Heun", "trapezoidal predictor-corrector", 2, {{0, 0}, {1, 0}}, {0.5, 0.5}, taylor_of_exp<2>),
-      explicit_runge_kutta("midpoint", "explicit midpoint", "the slope at the midpoint of an Euler half step", 2, {{0, 0}, {0.5, 0}}, {0, 1}, taylor_of_exp<2>),
-      explicit_runge_kutta("kutta3", "Kutta's third order", "Kutta's third-order method", 3, {{0, 0, 0}, {0.5, 0, 0}, {-1, 2, 0}},
-                           {1.0 / 6, 2.0 / 3, 1.0 / 6}, taylor_of_exp<3>),
-      explicit_runge_kutta("rk4", "RK4", "the classic method, the report's table", 4, {{0, 0, 0, 0}, {0.5, 0, 0, 0}, {0, 0.5, 0, 0}, {0, 0, 1, 0}},
+      explicit_runge_kutta("heun", "Heun", "trapezoidal predictor-corrector", 2,
+                           {{0, 0}, {1, 0}}, {0.5, 0.5}, taylor_of_exp<2>),
+      explicit_runge_kutta("midpoint", "explicit midpoint", "the slope at the midpoint of an Euler half step", 2,
+                           {{0, 0}, {0.5, 0}}, {0, 1}, taylor_of_exp<2>),
+      explicit_runge_kutta("kutta3", "Kutta's third order", "Kutta's third-order method", 3,
+                           {{0, 0, 0}, {0.5, 0, 0}, {-1, 2, 0}}, {1.0 / 6, 2.0 / 3, 1.0 / 6}, taylor_of_exp<3>),
+      explicit_runge_kutta("rk4", "RK4", "the classic method, the report's table", 4,
+                           {{0, 0, 0, 0}, {0.5, 0, 0, 0}, {0, 0.5, 0, 0}, {0, 0, 1, 0}},
                            {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}, taylor_of_exp<4>),
-      explicit_runge_kutta("rule38", "3/8 rule", "Kutta's 3/8 rule", 4, {{0, 0, 0, 0}, {1.0 / 3, 0, 0, 0}, {-1.0 / 3, 1, 0, 0}, {1, -1, 1, 0}},
+      explicit_runge_kutta("rule38", "3/8 rule", "Kutta's 3/8 rule", 4,
+                           {{0, 0, 0, 0}, {1.0 / 3, 0, 0, 0}, {-1.0 / 3, 1, 0, 0}, {1, -1, 1, 0}},
                            {1.0 / 8, 3.0 / 8, 3.0 / 8, 1.0 / 8}, taylor_of_exp<4>),
       // [runge_kutta_rows]
       // [embedded_pairs]
       // Chapter 8's embedded pairs: two weight rows over one set of stages, b advancing the solution and b-hat
       // measuring its local error, each transcribed from the paper that published it.
       // Heun's method with explicit Euler inside it: the simplest pair (its estimate is the Euler step's error).
-      embedded_pair("heun_euler", "Heun-Euler 2(1)", "Heun's method with explicit Euler inside it", 2, 1, {{}, {1}}, {1.0 / 2, 1.0 / 2}, {1, 0}, taylor_of_exp<2>),
+      embedded_pair("heun_euler", "Heun-Euler 2(1)", "Heun's method with explicit Euler inside it", 2, 1, {{}, {1}},
+                    {1.0 / 2, 1.0 / 2}, {1, 0}, taylor_of_exp<2>),
       // Bogacki & Shampine (1989), "A 3(2) pair of Runge-Kutta formulas", Appl. Math. Lett. 2(4): first same as
       // last, so three evaluations per step; its b has three nonzero weights, so R(z) is Kutta's.
       embedded_pair("bs32", "Bogacki-Shampine 3(2)",
-                    "first same as last (\\ref ref_bogacki1989 \"Bogacki & Shampine 1989\")", 3, 2, {{}, {1.0 / 2}, {0, 3.0 / 4}, {2.0 / 9, 1.0 / 3, 4.0 / 9}},
+                    "first same as last (\\ref ref_bogacki1989 \"Bogacki & Shampine 1989\")", 3, 2,
+                    {{}, {1.0 / 2}, {0, 3.0 / 4}, {2.0 / 9, 1.0 / 3, 4.0 / 9}},
                     {2.0 / 9, 1.0 / 3, 4.0 / 9, 0}, {7.0 / 24, 1.0 / 4, 1.0 / 3, 1.0 / 8}, taylor_of_exp<3>),
       // Fehlberg (1969), NASA TR R-315, "Low-order classical Runge-Kutta formulas with stepsize control", Table
       // III: the pair RKF4(5), which advances with its fourth-order row as Fehlberg intended.
-      embedded_pair("rkf45", "Fehlberg 4(5)", "advances with its fourth-order row (\\ref ref_fehlberg1969 \"Fehlberg 1969\")",
-                    4, 5,
+      embedded_pair("rkf45", "Fehlberg 4(5)",
+                    "advances with its fourth-order row (\\ref ref_fehlberg1969 \"Fehlberg 1969\")", 4, 5,
                     {{},
                      {1.0 / 4},
                      {3.0 / 32, 9.0 / 32},
@@ -246,13 +257,15 @@ const std::vector<Method>& methods() {
        builtin_implicit_tableau("implicit_euler").method, implicit_euler_stability_function, make_implicit_euler},
       // [implicit_rows]
       // Chapter 9's diagonally implicit methods, each stage an implicit Euler equation for StageNewton.
+      // The description is a line of Chapter 9's table: \\ref links a citation to the references page.
       diagonally_implicit("implicit_midpoint", "implicit midpoint", "the one-stage Gauss method", pade11),
       diagonally_implicit("trapezoid", "trapezoidal rule", "\\ref ref_crank1947 \"Crank & Nicolson 1947\"", pade11),
       diagonally_implicit("sdirk2", "SDIRK2", "γ = 1 - √2/2 (\\ref ref_alexander1977 \"Alexander 1977\")",
                           sdirk2_stability_function),
-      diagonally_implicit("sdirk3", "SDIRK3", "γ = 0.4358665215 (\\ref ref_alexander1977 \"Alexander 1977\")", nullptr),
-      diagonally_implicit("trbdf2", "TR-BDF2",
-                          "step control (\\ref ref_hosea1996 \"Hosea & Shampine 1996\")", nullptr),
+      diagonally_implicit("sdirk3", "SDIRK3", "γ = 0.4358665215 (\\ref ref_alexander1977 \"Alexander 1977\")",
+                          nullptr),
+      diagonally_implicit("trbdf2", "TR-BDF2", "step control (\\ref ref_hosea1996 \"Hosea & Shampine 1996\")",
+                          nullptr),
       // [implicit_rows]
       // Local/global (Chapter 10; Liu, Bargteil, O'Brien & Kavan 2013): implicit Euler's step again, its equations
       // solved by a fixed number of alternating spring projections and solves with a constant matrix instead of
@@ -263,7 +276,8 @@ const std::vector<Method>& methods() {
        make_local_global},
       // BDF2 (Chapter 9): a two-step method, so no tableau and no scalar R(z); its one implicit equation per step
       // is a stage equation for StageNewton (Choi & Ko 2002 use it for cloth).
-      {"bdf2", "BDF2", "the two-step backward differentiation formula", MethodFamily::multistep, 2, std::nullopt, nullptr, make_bdf2},
+      {"bdf2", "BDF2", "the two-step backward differentiation formula", MethodFamily::multistep, 2, std::nullopt,
+       nullptr, make_bdf2},
   };
   return table;
 }
