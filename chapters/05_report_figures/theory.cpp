@@ -64,9 +64,11 @@ void write_theory(const std::vector<Run>& runs, const Options& opt, const Settin
   std::printf("%5s %4s %10s %9s %15s %15s %9s\n", "K", "D", "omega_max", "h omega", "EE factor/step", "factor^(T/h)",
               "h c_max");
   // The page's tables: the undamped modes per K, the damped ones per D (theory.md).
-  MarkdownTable per_K({"K [N/m]", "ω_max [1/s]", "h ω_max", "explicit Euler's energy factor a step, 1 + (h ω_max)²",
+  // HTML subscripts: a fragment's formulas are not typeset (program/fragment.hpp).
+  MarkdownTable per_K({"K [N/m]", "ω<sub>max</sub> [1/s]", "h ω<sub>max</sub>",
+                       "explicit Euler's energy factor a step, 1 + (h ω<sub>max</sub>)²",
                        "the same over T = " + format_number(T) + " s"}, "rrrrr");
-  MarkdownTable per_D({"D [N s/m]", "c_max [1/s]", "h c_max"}, "rrr");
+  MarkdownTable per_D({"D [N s/m]", "c<sub>max</sub> [1/s]", "h c<sub>max</sub>"}, "rrr");
   for (const double K : sweep_K) {
     const double omega = std::sqrt(K * mu / m), ho = h * omega;
     per_K.add_row({format_number(K), format_number(omega, 4), format_fixed(ho, 3), format_fixed(1 + ho * ho, 3),
@@ -85,12 +87,14 @@ void write_theory(const std::vector<Run>& runs, const Options& opt, const Settin
   for (const double D : sweep_D)
     if (D > 0) per_D.add_row({format_number(D), format_number(D * mu / m, 4), format_fixed(h * D * mu / m, 3)});
   write_text_fragment(opt.run.out_dir + "/theory.md",
-                      "At rest, μ_max = " + format_number(mu, 4) + ", and at h = " + format_number(h) + " s:\n\n" +
+                      "At rest, μ<sub>max</sub> = " + format_number(mu, 4) + ", and at h = " + format_number(h) +
+                          " s:\n\n" +
                           per_K.markdown() + "\n" + per_D.markdown() + "\n" + measured_by_line(settings.command));
 
   // The damped runs' fastest damped mode on the cloth as it deforms: h c_max against the real-axis stability
   // limits, 2 for explicit Euler and 2.785 for RK4 (Chapter 3).
-  MarkdownTable deformed({"implicit Euler's run", "t [s]", "μ_max of the deformed cloth", "h c_max"}, "lrrr");
+  MarkdownTable deformed(
+      {"implicit Euler's run", "t [s]", "μ<sub>max</sub> of the deformed cloth", "h c<sub>max</sub>"}, "lrrr");
   for (std::size_t r = 0; r < methods.size() * report_cases.size(); ++r) {
     const Run& run = runs[r];
     if (run.D == 0 || run.method != "implicit_euler") continue;
@@ -114,7 +118,8 @@ void write_growth(const std::vector<Run>& runs, const Options& opt, const Settin
                   const EnergyReference& reference) {
   const double h = opt.run.dt, mu = rest_stiffness_mu_max(opt.scene);
   const std::string ratio = reference.launch ? "E/E(0)" : "E/E_ref";
-  MarkdownTable table({"explicit Euler", "predicted factor a step, 1 + (h ω_max)²", "from t [s]", "to t [s]",
+  MarkdownTable table({"explicit Euler", "predicted factor a step, 1 + (h ω<sub>max</sub>)²", "from t [s]",
+                       "to t [s]",
                        ratio + " at the start", ratio + " at the end", "measured factor a step"},
                       "lrrrrrr");
   for (std::size_t r = 0; r < methods.size() * report_cases.size(); ++r) {
