@@ -297,7 +297,7 @@ TEST_CASE("ch03 --report-runs with another built-in tableau removes the earlier 
   const fs::path out = folder.cwd() / "out";
   const std::vector<std::string> run = {"--report-runs", "--grid", "4x4", "--t-end", "0.02", "--out", "out"};
   REQUIRE(folder.run("ch03_runge_kutta", run).status == 0);
-  CHECK(entry_count(out) == 4);  // order.dat and rk4_K50_D0, rk4_K200_D0, rk4_K200_D20
+  CHECK(entry_count(out) == 5);  // order.dat, methods.md and rk4_K50_D0, rk4_K200_D0, rk4_K200_D20
   std::ofstream(out / "rk4_K200_D20" / "notes.txt") << "mine\n";
   std::vector<std::string> heun = run;
   heun.insert(heun.end(), {"--tableau", "heun"});
@@ -310,7 +310,7 @@ TEST_CASE("ch03 --report-runs with another built-in tableau removes the earlier 
   // The folder holding a reader's file stays, with that file alone.
   CHECK(entry_count(out / "rk4_K200_D20") == 1);
   CHECK(read_text(out / "rk4_K200_D20" / "notes.txt") == "mine\n");
-  CHECK(entry_count(out) == 5);
+  CHECK(entry_count(out) == 6);
 }
 
 TEST_CASE("--damping -0 is written as 0; more frames than steps are said, and frames.dat holds one per step") {
