@@ -106,8 +106,8 @@ void write_theory(const std::vector<Run>& runs, const Options& opt, const Settin
                    mu_d, hc);
       std::printf("implicit Euler K = %g, D = %g, t = %4.2f s: mu_max = %.4g, h c_max = %.4g\n", run.K, run.D, f.t,
                   mu_d, hc);
-      deformed.add_row({"K = " + format_number(run.K) + ", D = " + format_number(run.D), format_number(f.t, 3),
-                        format_number(mu_d, 4), format_fixed(hc, 2)});
+      deformed.add_row({k == 0 ? "K = " + format_number(run.K) + ", D = " + format_number(run.D) : "",
+                        format_number(f.t, 3), format_number(mu_d, 4), format_fixed(hc, 2)});
     }
   }
   theory.commit();
