@@ -3,6 +3,7 @@
 
 #include "timing.hpp"
 
+#include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "integrators/adaptive_simulate.hpp"
 #include "integrators/implicit_euler.hpp"
@@ -95,13 +96,13 @@ Trajectory run_sampled(Stepper& stepper, double T, long long steps, int samples)
     throw_if_interrupted();  // Ctrl-C ends the program between two steps (program/interrupt.hpp)
     if (!stepper.step(h, x, v)) {
       out.ok = false;
-      out.message = "step failed at t = " + std::to_string((k + 1) * h);
+      out.message = "step failed at t = " + format_number(static_cast<double>(k + 1) * h, 3) + " s";
       return out;
     }
     if ((k + 1) % per_sample == 0) {
       if (!divergence_reason(x, v, radius).empty()) {
         out.ok = false;
-        out.message = "diverged by t = " + std::to_string((k + 1) * h);
+        out.message = "diverged by t = " + format_number(static_cast<double>(k + 1) * h, 3) + " s";
         return out;
       }
       out.x[static_cast<std::size_t>((k + 1) / per_sample)] = x;
@@ -113,7 +114,7 @@ Trajectory run_sampled(Stepper& stepper, double T, long long steps, int samples)
 // [near_zero]
 // The smallest spring length relative to rest, l / L0, over the cloth and over time: where and when springs pass
 // near zero length, where the force direction u = d / l turns abruptly and the right-hand side is not smooth.
-void near_zero_springs(const SceneParams& base, double T, double h, const Sink& sink) {
+NearZero near_zero_springs(const SceneParams& base, double T, double h, const Sink& sink) {
   const Scene scene(base);
   ForceField field(scene);
   const auto rk4 = make_stepper("rk4", field);
@@ -122,7 +123,8 @@ void near_zero_springs(const SceneParams& base, double T, double h, const Sink& 
   const auto steps = static_cast<long long>(std::llround(T / h));
   const auto file = open(sink, "near_zero.dat", "# t min_l_over_L0 family(0 structural,1 shear,2 flexion) i_p j_p i_q j_q");
   std::FILE* const f = file->get();
-  double global_min = 1e300, t_min = 0;
+  NearZero out;
+  out.h = h;
   int spring_min = -1;
   const auto& springs = scene.springs();
   for (long long k = 0; k <= steps; ++k) {
@@ -137,7 +139,8 @@ void near_zero_springs(const SceneParams& base, double T, double h, const Sink& 
     const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q);
     const int N = scene.grid().N;
     std::fprintf(f, "%.6f %.6e %d %d %d %d %d\n", k * h, worst, family, p / N, p % N, q / N, q % N);
-    if (worst < global_min) global_min = worst, t_min = k * h, spring_min = which;
+    out.t.push_back(k * h), out.shortest.push_back(worst);
+    if (worst < out.smallest) out.smallest = worst, out.t_smallest = k * h, spring_min = which;
     if (k * h <= 1.0 + 1e-12) {
       std::fprintf(sink.table, "near_zero K%g_D%g - %.6f - - %.6e - - - - - - ok\n", base.stiffness, base.damping,
                    k * h, worst);
@@ -147,7 +150,13 @@ void near_zero_springs(const SceneParams& base, double T, double h, const Sink& 
   const Spring& sp = springs.springs[static_cast<std::size_t>(spring_min)];
   const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q), N = scene.grid().N;
   std::printf("near-zero springs (K %g, D %g, rk4 h %g): smallest l/L0 = %.3e at t = %.4f s, spring (%d,%d)-(%d,%d)\n",
-              base.stiffness, base.damping, h, global_min, t_min, p / N, p % N, q / N, q % N);
+              base.stiffness, base.damping, h, out.smallest, out.t_smallest, p / N, p % N, q / N, q % N);
+  const char* const family_names[] = {"structural", "shear", "flexion"};
+  for (SpringFamily fam : all_spring_families)
+    if (spring_min >= springs.family[static_cast<int>(fam)].begin && spring_min < springs.family[static_cast<int>(fam)].end)
+      out.spring = std::string("a ") + family_names[static_cast<int>(fam)] + " spring, (" + std::to_string(p / N) +
+                   "," + std::to_string(p % N) + ")-(" + std::to_string(q / N) + "," + std::to_string(q % N) + ")";
+  return out;
 }
 // [near_zero]
 
@@ -155,11 +164,14 @@ void near_zero_springs(const SceneParams& base, double T, double h, const Sink& 
 // Two RK4 runs whose initial positions differ by 1e-12 m in one coordinate (a particle near the middle, in z):
 // the ratio of their largest particle distance to 1e-12 is how much the problem amplifies a perturbation, the
 // condition number of the solution at time t; no method can be checked more accurately than eps times it.
-void sensitivity(const SceneParams& base, const std::vector<Config>& configs, double h, const Sink& sink) {
+std::vector<Sensitivity> sensitivity(const SceneParams& base, const std::vector<Config>& configs, double h,
+                                     const Sink& sink) {
   const auto file = open(sink, "sensitivity.dat", "# config K D t amplification  (blocks by config)");
   std::FILE* const f = file->get();
   const double delta = 1e-12;
+  std::vector<Sensitivity> out;
   for (const Config& c : configs) {
+    Sensitivity& series = out.emplace_back(Sensitivity{c.name, {}, {}});
     const Scene scene(with_K_and_D(base, c.K, c.D));
     ForceField fa(scene), fb(scene);
     const auto a = make_stepper("rk4", fa), b = make_stepper("rk4", fb);
@@ -175,6 +187,7 @@ void sensitivity(const SceneParams& base, const std::vector<Config>& configs, do
       if (k > 0) a->step(h, xa, va), b->step(h, xb, vb);
       if (k % every == 0) {
         const double amp = max_particle_distance(xa, xb) / delta;
+        series.t.push_back(k * h), series.amplification.push_back(amp);
         std::fprintf(f, "%s %g %g %.6f %.6e\n", c.name.c_str(), c.K, c.D, k * h, amp);
         std::fprintf(sink.table, "sensitivity %s - %.6f - - - %.6e - - - - - ok\n", c.name.c_str(), k * h, amp);
       }
@@ -182,6 +195,7 @@ void sensitivity(const SceneParams& base, const std::vector<Config>& configs, do
     std::fprintf(f, "\n\n");
   }
   file->commit();
+  return out;
 }
 // [sensitivity]
 
@@ -189,15 +203,16 @@ void sensitivity(const SceneParams& base, const std::vector<Config>& configs, do
 // The reference: RK4 with 2^k_ref steps, checked against the 3/8 rule (a different fourth-order method) with
 // twice as many. Their largest sampled difference is its credential: every error plotted must exceed it 100x.
 Trajectory reference(const SceneParams& base, const Config& c, int samples, int k_ref, const Sink& sink,
-                     double& agreement) {
+                     ReferenceCheck& check) {
   const Scene scene(with_K_and_D(base, c.K, c.D));
   ForceField f1(scene), f2(scene);
   const auto rk4 = make_stepper("rk4", f1), rule38 = make_stepper("rule38", f2);
   const long long n = 1LL << k_ref;
   const Trajectory a = run_sampled(*rk4, c.T, n, samples);
   const Trajectory b = run_sampled(*rule38, c.T, 2 * n, samples);
-  agreement = 0;
+  double agreement = 0;
   for (std::size_t j = 0; j < a.x.size(); ++j) agreement = std::max(agreement, max_particle_distance(a.x[j], b.x[j]));
+  check = {c.name, n, agreement};
   std::printf("reference %s (K %g, D %g, T %g): rk4 with h = T/2^%d and rule38 with h = T/2^%d agree to %.2e m\n",
               c.name.c_str(), c.K, c.D, c.T, k_ref, k_ref + 1, agreement);
   std::fprintf(sink.table, "reference %s rk4_vs_rule38 %.6g %lld - %.6e - - - - - - %s\n", c.name.c_str(),
@@ -207,9 +222,11 @@ Trajectory reference(const SceneParams& base, const Config& c, int samples, int 
 // [reference]
 
 // [work_precision]
-void work_precision(const SceneParams& base, const Config& c, const Trajectory& ref, int samples, int k_min,
-                    int k_max, double max_seconds, int runs, double ref_agreement, const Sink& sink) {
+std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, const Trajectory& ref, int samples,
+                                      int k_min, int k_max, double max_seconds, int runs, double ref_agreement,
+                                      const Sink& sink) {
   const Scene scene(with_K_and_D(base, c.K, c.D));
+  std::vector<WorkPoint> points;
   const auto file = open(sink, "wp_" + c.name + ".dat",
                       "# method h steps seconds err_max_T err_rms rhs assemblies factorizations cg_iterations "
                       "newton_iterations  (blocks by method)");
@@ -230,6 +247,7 @@ void work_precision(const SceneParams& base, const Config& c, const Trajectory& 
         std::fprintf(sink.table, "dropped %s %s %.6g %lld - - - - - - - - %s\n", c.name.c_str(), method.c_str(), h,
                      steps, traj.message.c_str());
         std::fprintf(f, "# dropped h = %g: %s\n", h, traj.message.c_str());
+        points.push_back({c.name, method, h, 0, steps, 0, 0, stepper->counters(), true, traj.message});
         continue;
       }
       const StepCounters counters = stepper->counters();
@@ -244,6 +262,7 @@ void work_precision(const SceneParams& base, const Config& c, const Trajectory& 
       if (err_T < 100 * ref_agreement) {
         std::fprintf(sink.table, "dropped %s %s %.6g %lld - %.6e - - - - - - below_100x_reference_agreement\n",
                      c.name.c_str(), method.c_str(), h, steps, err_T);
+        points.push_back({c.name, method, h, 0, steps, 0, err_T, counters, true, "below_100x_reference_agreement"});
         break;
       }
       // Timing: the median of `runs` repeated runs (fewer when one run is already long: then 1 is the median).
@@ -260,6 +279,7 @@ void work_precision(const SceneParams& base, const Config& c, const Trajectory& 
                    method.c_str(), h, steps, t.wall, err_T, err_rms, counters.rhs_evaluations,
                    counters.jacobian_assemblies, counters.factorizations, counters.cg_iterations,
                    counters.newton_iterations);
+      points.push_back({c.name, method, h, 0, steps, t.wall, err_T, counters, false, ""});
       std::fflush(f);
       if (err_T < 1e-9 || first > max_seconds) break;  // accurate enough, or expensive enough
     }
@@ -283,9 +303,16 @@ void work_precision(const SceneParams& base, const Config& c, const Trajectory& 
     const auto t0 = std::chrono::steady_clock::now();
     r = adaptive_simulate(rk, run, settings, false);
     const double first = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (r.status != RunStatus::ok) continue;
+    if (r.status != RunStatus::ok) {
+      points.push_back({c.name, "dopri5_adaptive", 0, tol, r.accepted, 0, 0, r.counters, true, r.message});
+      continue;
+    }
     const double err_T = max_particle_distance(r.x, ref.x.back());
-    if (err_T < 100 * ref_agreement) break;
+    if (err_T < 100 * ref_agreement) {
+      points.push_back({c.name, "dopri5_adaptive", 0, tol, r.accepted, 0, err_T, r.counters, true,
+                        "below_100x_reference_agreement"});
+      break;
+    }
     const int n_runs = first > max_seconds / 5 ? 1 : runs;
     const Seconds t = n_runs == 1 ? Seconds{first, first} : median_seconds([&] {
       ForceField fresh(scene);
@@ -297,23 +324,26 @@ void work_precision(const SceneParams& base, const Config& c, const Trajectory& 
                  r.counters.rhs_evaluations);
     std::fprintf(sink.table, "wp %s dopri5_adaptive %.6e %lld %.6e %.6e %.6e %lld 0 0 0 0 ok\n", c.name.c_str(), h,
                  r.accepted, t.wall, err_T, err_T, r.counters.rhs_evaluations);
+    points.push_back({c.name, "dopri5_adaptive", h, tol, r.accepted, t.wall, err_T, r.counters, false, ""});
     if (err_T < 1e-9 || first > max_seconds) break;
   }
   std::fprintf(f, "\n\n");
   file->commit();
+  return points;
 }
 // [work_precision]
 
 // [scaling]
 // Cost of one step against the grid size, at the report's h = 0.01 for the implicit methods and h = 1e-3 for
 // the explicit ones (the step changes the work per step only through Newton and CG iteration counts).
-void scaling(const SceneParams& base, const std::vector<int>& sizes, int runs, double max_step_seconds,
-             const Sink& sink) {
+std::vector<ScalingPoint> scaling(const SceneParams& base, const std::vector<int>& sizes, int runs,
+                                  double max_step_seconds, const Sink& sink) {
   const auto file = open(sink, "scaling.dat",
                       "# method grid springs seconds_per_step assembly factorization solve newton_per_step "
                       "cg_per_solve cpu_seconds_per_step  (blocks by method)");
   std::FILE* const f = file->get();
   const std::vector<std::string> methods = {"explicit_euler", "rk4", "implicit_euler_direct", "implicit_euler_cg"};
+  std::vector<ScalingPoint> out;
   for (const std::string& method : methods) {
     std::fprintf(f, "# %s\n", method.c_str());
     for (int size : sizes) {
@@ -354,6 +384,7 @@ void scaling(const SceneParams& base, const std::vector<int>& sizes, int runs, d
                             : 0.0;
       std::fprintf(f, "%s %d %d %.6e %.6e %.6e %.6e %.3f %.2f %.6e\n", method.c_str(), size, scene.springs().size(),
                    per_step, assembly, factorization, solve, newton, cg, t.cpu / steps);
+      out.push_back({method, size, scene.springs().size(), t.cpu / steps, factorization / per_step, newton, cg});
       std::fprintf(sink.table, "scaling %dx%d %s %.6g %d %.6e - - - - - - - ok\n", size, size, method.c_str(), h,
                    scene.springs().size(), per_step);
       std::fflush(f);
@@ -366,6 +397,7 @@ void scaling(const SceneParams& base, const std::vector<int>& sizes, int runs, d
     std::fprintf(f, "\n\n");
   }
   file->commit();
+  return out;
 }
 // [scaling]
 
