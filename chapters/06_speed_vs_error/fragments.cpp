@@ -73,8 +73,10 @@ std::string count_text(const Benchmark& b) {
                                                            {"cg_iterations_per_solve", "CG iterations per solve"},
                                                            {"rhs_evaluations", "force evaluations"},
                                                            {"iterations", "CG iterations"}};
-  const auto unit = units.find(b.count_name);
-  return (b.count >= 1e5 ? g(b.count, 3) : g(b.count, 6)) + " " + (unit == units.end() ? b.count_name : unit->second);
+  const auto found = units.find(b.count_name);
+  std::string unit = found == units.end() ? b.count_name : found->second;
+  if (b.count == 1 && unit.back() == 's') unit.pop_back();  // 1 force evaluation
+  return (b.count >= 1e5 ? g(b.count, 3) : g(b.count, 6)) + " " + unit;
 }
 
 // The least-squares slope of log y against log x.
@@ -97,7 +99,7 @@ const WorkPoint* fastest(const std::vector<WorkPoint>& work, const std::string& 
 }
 
 std::string run_text(const WorkPoint& p) {
-  const std::string how = p.method == "dopri5_adaptive" ? "tolerance " + g(p.tolerance) : "h = " + step(p.h) + " s";
+  const std::string how = p.method == "dopri5_adaptive" ? "tolerance " + power_of_ten(p.tolerance) : "h = " + step(p.h) + " s";
   return method_title(p.method) + ", " + how + ", " + ms(p.seconds);
 }
 
@@ -109,7 +111,8 @@ void write_fastest(const std::string& dir, const std::vector<WorkPoint>& work, c
   for (const Config& c : configs) header.push_back(config_title(c));
   MarkdownTable table(header);
   // What the sentence under the table says: the fastest methods by required error, and how the adaptive pair fared.
-  std::vector<std::string> winners_by_error, adaptive_wins;
+  std::vector<std::string> winners_by_error;
+  int adaptive_wins = 0;
   double adaptive_best_ratio = 1e300, adaptive_worst_ratio = 0;
   int cells = 0;
   for (const double e : required_errors) {
@@ -129,7 +132,7 @@ void write_fastest(const std::string& dir, const std::vector<WorkPoint>& work, c
             (!adaptive || p.seconds < adaptive->seconds))
           adaptive = &p;
       if (best->method == "dopri5_adaptive")
-        adaptive_wins.push_back(power_of_ten(e) + " m on " + config_title(c));
+        ++adaptive_wins;
       else if (adaptive) {
         adaptive_best_ratio = std::min(adaptive_best_ratio, adaptive->seconds / best->seconds);
         adaptive_worst_ratio = std::max(adaptive_worst_ratio, adaptive->seconds / best->seconds);
@@ -138,7 +141,7 @@ void write_fastest(const std::string& dir, const std::vector<WorkPoint>& work, c
     table.add_row(row);
     // "to 1e-1 m, symplectic Euler on every cloth" or "to 1e-2 m, Heun on (50, 0), RK4 on (200, 20) and ...".
     if (cell_winners.empty()) continue;
-    std::string text = "to " + power_of_ten(e) + " m, ";
+    std::string text = "to " + power_of_ten(e) + (winners_by_error.empty() ? " m was " : " m, ");
     if (winners.size() == 1 && cell_winners.size() == configs.size())
       text += *winners.begin() + " on every cloth";
     else
@@ -152,13 +155,8 @@ void write_fastest(const std::string& dir, const std::vector<WorkPoint>& work, c
   for (std::size_t i = 0; i < winners_by_error.size(); ++i)
     sentence += (i == 0 ? "" : i + 1 == winners_by_error.size() ? "; and " : "; ") + winners_by_error[i];
   sentence += ". Chapter 8's adaptive Dormand-Prince pair is the fastest in " +
-              (adaptive_wins.empty() ? std::string("none") : std::to_string(adaptive_wins.size())) + " of the " +
+              (adaptive_wins == 0 ? std::string("none") : std::to_string(adaptive_wins)) + " of the " +
               std::to_string(cells) + " cells";
-  if (!adaptive_wins.empty()) {
-    sentence += " (";
-    for (std::size_t i = 0; i < adaptive_wins.size(); ++i) sentence += (i == 0 ? "" : ", ") + adaptive_wins[i];
-    sentence += ")";
-  }
   if (adaptive_worst_ratio > 0)
     sentence += "; where a fixed step wins, the adaptive pair takes " + g(adaptive_best_ratio) + " to " +
                 g(adaptive_worst_ratio) + " times the winner's time";
@@ -348,7 +346,7 @@ void write_study_fragments(const std::string& dir, const StudyResults& r, const 
                                     ? "error " + g(p.error) + " m, within 100 times the reference's uncertainty"
                                     : p.why;
         table.add_row({config_title(c), method_title(p.method),
-                       p.method == "dopri5_adaptive" ? "tolerance " + g(p.tolerance) : "h = " + step(p.h) + " s", why});
+                       p.method == "dopri5_adaptive" ? "tolerance " + power_of_ten(p.tolerance) : "h = " + step(p.h) + " s", why});
       }
     write_table_fragment(dir + "/dropped.md", table, command);
   }
