@@ -111,6 +111,27 @@ Trajectory run_sampled(Stepper& stepper, double T, long long steps, int samples)
   return out;
 }
 
+namespace {
+
+// The family of spring s (0 structural, 1 shear, 2 flexion).
+int family_of(const SpringSet& springs, int s) {
+  for (SpringFamily fam : all_spring_families)
+    if (s >= springs.family[static_cast<int>(fam)].begin && s < springs.family[static_cast<int>(fam)].end)
+      return static_cast<int>(fam);
+  return 0;
+}
+
+// "a structural spring, (9,7)-(10,7)": its family and the grid indices of its two particles.
+std::string spring_description(const Scene& scene, int s) {
+  const Spring& sp = scene.springs().springs[static_cast<std::size_t>(s)];
+  const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q), N = scene.grid().N;
+  const char* const names[] = {"structural", "shear", "flexion"};
+  return std::string("a ") + names[family_of(scene.springs(), s)] + " spring, (" + std::to_string(p / N) + "," +
+         std::to_string(p % N) + ")-(" + std::to_string(q / N) + "," + std::to_string(q % N) + ")";
+}
+
+}  // namespace
+
 // [near_zero]
 // The smallest spring length relative to rest, l / L0, over the cloth and over time: where and when springs pass
 // near zero length, where the force direction u = d / l turns abruptly and the right-hand side is not smooth.
@@ -132,10 +153,7 @@ NearZero near_zero_springs(const SceneParams& base, double T, double h, const Si
     if (k > 0) rk4->step(h, x, v);
     const auto [worst, which] = shortest_spring(scene, x, all);
     const Spring& sp = springs.springs[static_cast<std::size_t>(which)];
-    int family = 0;
-    for (SpringFamily fam : all_spring_families)
-      if (which >= springs.family[static_cast<int>(fam)].begin && which < springs.family[static_cast<int>(fam)].end)
-        family = static_cast<int>(fam);
+    const int family = family_of(springs, which);
     const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q);
     const int N = scene.grid().N;
     std::fprintf(f, "%.6f %.6e %d %d %d %d %d\n", k * h, worst, family, p / N, p % N, q / N, q % N);
@@ -147,15 +165,9 @@ NearZero near_zero_springs(const SceneParams& base, double T, double h, const Si
     }
   }
   file->commit();
-  const Spring& sp = springs.springs[static_cast<std::size_t>(spring_min)];
-  const int p = scene.particle_of_slot(sp.p), q = scene.particle_of_slot(sp.q), N = scene.grid().N;
-  std::printf("near-zero springs (K %g, D %g, rk4 h %g): smallest l/L0 = %.3e at t = %.4f s, spring (%d,%d)-(%d,%d)\n",
-              base.stiffness, base.damping, h, out.smallest, out.t_smallest, p / N, p % N, q / N, q % N);
-  const char* const family_names[] = {"structural", "shear", "flexion"};
-  for (SpringFamily fam : all_spring_families)
-    if (spring_min >= springs.family[static_cast<int>(fam)].begin && spring_min < springs.family[static_cast<int>(fam)].end)
-      out.spring = std::string("a ") + family_names[static_cast<int>(fam)] + " spring, (" + std::to_string(p / N) +
-                   "," + std::to_string(p % N) + ")-(" + std::to_string(q / N) + "," + std::to_string(q % N) + ")";
+  out.spring = spring_description(scene, spring_min);
+  std::printf("near-zero springs (K %g, D %g, rk4 h %g): smallest l/L0 = %.3e at t = %.4f s, %s\n", base.stiffness,
+              base.damping, h, out.smallest, out.t_smallest, out.spring.c_str());
   return out;
 }
 // [near_zero]
@@ -221,6 +233,34 @@ Trajectory reference(const SceneParams& base, const Config& c, int samples, int 
 }
 // [reference]
 
+namespace {
+
+// A run of the sweep, kept: its line in wp_<config>.dat and in speed_vs_error.dat, or its `dropped` row.
+void record(const Sink& sink, std::FILE* f, std::vector<WorkPoint>& points, const WorkPoint& p) {
+  const StepCounters& n = p.counters;
+  if (p.dropped) {
+    if (p.why == "below_100x_reference_agreement")
+      std::fprintf(sink.table, "dropped %s %s %.6g %lld - %.6e - - - - - - %s\n", p.config.c_str(), p.method.c_str(),
+                   p.h, p.steps, p.error, p.why.c_str());
+    else {
+      std::fprintf(sink.table, "dropped %s %s %.6g %lld - - - - - - - - %s\n", p.config.c_str(), p.method.c_str(), p.h,
+                   p.steps, p.why.c_str());
+      std::fprintf(f, "# dropped h = %g: %s\n", p.h, p.why.c_str());
+    }
+  } else {
+    std::fprintf(f, "%s %.6e %lld %.6e %.6e %.6e %lld %lld %lld %lld %lld\n", p.method.c_str(), p.h, p.steps, p.seconds,
+                 p.error, p.error_rms, n.rhs_evaluations, n.jacobian_assemblies, n.factorizations, n.cg_iterations,
+                 n.newton_iterations);
+    std::fprintf(sink.table, "wp %s %s %.6e %lld %.6e %.6e %.6e %lld %lld %lld %lld %lld ok\n", p.config.c_str(),
+                 p.method.c_str(), p.h, p.steps, p.seconds, p.error, p.error_rms, n.rhs_evaluations,
+                 n.jacobian_assemblies, n.factorizations, n.cg_iterations, n.newton_iterations);
+    std::fflush(f);
+  }
+  points.push_back(p);
+}
+
+}  // namespace
+
 // [work_precision]
 std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, const Trajectory& ref, int samples,
                                       int k_min, int k_max, double max_seconds, int runs, double ref_agreement,
@@ -243,51 +283,40 @@ std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, 
       const auto t0 = std::chrono::steady_clock::now();
       Trajectory traj = run_sampled(*stepper, c.T, steps, samples);
       const double first = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      WorkPoint point{c.name, method, h, 0, steps, 0, 0, 0, stepper->counters(), false, ""};
       if (!traj.ok) {
-        std::fprintf(sink.table, "dropped %s %s %.6g %lld - - - - - - - - %s\n", c.name.c_str(), method.c_str(), h,
-                     steps, traj.message.c_str());
-        std::fprintf(f, "# dropped h = %g: %s\n", h, traj.message.c_str());
-        points.push_back({c.name, method, h, 0, steps, 0, 0, stepper->counters(), true, traj.message});
+        point.dropped = true, point.why = traj.message;
+        record(sink, f, points, point);
         continue;
       }
-      const StepCounters counters = stepper->counters();
-      double err_T = max_particle_distance(traj.x.back(), ref.x.back()), sum2 = 0;
+      point.error = max_particle_distance(traj.x.back(), ref.x.back());
+      double sum2 = 0;
       long long terms = 0;
       for (std::size_t j = 1; j < traj.x.size(); ++j) {
         sum2 += (traj.x[j] - ref.x[j]).squaredNorm();
         terms += traj.x[j].size() / 3;
       }
-      const double err_rms = std::sqrt(sum2 / static_cast<double>(terms));
+      point.error_rms = std::sqrt(sum2 / static_cast<double>(terms));
       // An error within 100x of the reference's own uncertainty is not a measurement: listed, not plotted.
-      if (err_T < 100 * ref_agreement) {
-        std::fprintf(sink.table, "dropped %s %s %.6g %lld - %.6e - - - - - - below_100x_reference_agreement\n",
-                     c.name.c_str(), method.c_str(), h, steps, err_T);
-        points.push_back({c.name, method, h, 0, steps, 0, err_T, counters, true, "below_100x_reference_agreement"});
+      if (point.error < 100 * ref_agreement) {
+        point.dropped = true, point.why = "below_100x_reference_agreement";
+        record(sink, f, points, point);
         break;
       }
       // Timing: the median of `runs` repeated runs (fewer when one run is already long: then 1 is the median).
       const int n_runs = first > max_seconds / 5 ? 1 : runs;
-      const Seconds t = n_runs == 1 ? Seconds{first, first} : median_seconds([&] {
+      point.seconds = n_runs == 1 ? first : median_seconds([&] {
         ForceField fresh(scene);
         auto s = row.stepper(fresh);
         run_sampled(*s, c.T, steps, samples);
-      }, n_runs, 0);
-      std::fprintf(f, "%s %.6e %lld %.6e %.6e %.6e %lld %lld %lld %lld %lld\n", method.c_str(), h, steps, t.wall, err_T,
-                   err_rms, counters.rhs_evaluations, counters.jacobian_assemblies, counters.factorizations,
-                   counters.cg_iterations, counters.newton_iterations);
-      std::fprintf(sink.table, "wp %s %s %.6e %lld %.6e %.6e %.6e %lld %lld %lld %lld %lld ok\n", c.name.c_str(),
-                   method.c_str(), h, steps, t.wall, err_T, err_rms, counters.rhs_evaluations,
-                   counters.jacobian_assemblies, counters.factorizations, counters.cg_iterations,
-                   counters.newton_iterations);
-      points.push_back({c.name, method, h, 0, steps, t.wall, err_T, counters, false, ""});
-      std::fflush(f);
-      if (err_T < 1e-9 || first > max_seconds) break;  // accurate enough, or expensive enough
+      }, n_runs, 0).wall;
+      record(sink, f, points, point);
+      if (point.error < 1e-9 || first > max_seconds) break;  // accurate enough, or expensive enough
     }
     std::fprintf(f, "\n\n");
   }
   // Chapter 8's adaptive Dormand-Prince beside the fixed steps: one run per tolerance rtol = atol = 10^-j. Its
-  // h column is the mean step T / (accepted steps); it samples no intermediate times, so its err_rms is its error
-  // at T.
+  // h is the mean step T / (accepted steps); it samples no intermediate times, so its err_rms is its error at T.
   std::fprintf(f, "# dopri5_adaptive\n");
   RunSettings run;
   run.t_end = c.T;
@@ -299,33 +328,30 @@ std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, 
     settings.tolerances = {tol, tol};
     ForceField field(scene);
     EmbeddedRungeKutta rk(field, embedded_tableau_from_argument("dopri5"));
-    AdaptiveResult r;
     const auto t0 = std::chrono::steady_clock::now();
-    r = adaptive_simulate(rk, run, settings, false);
+    const AdaptiveResult r = adaptive_simulate(rk, run, settings, false);
     const double first = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double h = r.accepted > 0 ? c.T / static_cast<double>(r.accepted) : 0.0;
+    WorkPoint point{c.name, "dopri5_adaptive", h, tol, r.accepted, 0, 0, 0, r.counters, false, ""};
     if (r.status != RunStatus::ok) {
-      points.push_back({c.name, "dopri5_adaptive", 0, tol, r.accepted, 0, 0, r.counters, true, r.message});
+      point.dropped = true, point.why = r.message;
+      record(sink, f, points, point);
       continue;
     }
-    const double err_T = max_particle_distance(r.x, ref.x.back());
-    if (err_T < 100 * ref_agreement) {
-      points.push_back({c.name, "dopri5_adaptive", 0, tol, r.accepted, 0, err_T, r.counters, true,
-                        "below_100x_reference_agreement"});
+    point.error = point.error_rms = max_particle_distance(r.x, ref.x.back());
+    if (point.error < 100 * ref_agreement) {
+      point.dropped = true, point.why = "below_100x_reference_agreement";
+      record(sink, f, points, point);
       break;
     }
     const int n_runs = first > max_seconds / 5 ? 1 : runs;
-    const Seconds t = n_runs == 1 ? Seconds{first, first} : median_seconds([&] {
+    point.seconds = n_runs == 1 ? first : median_seconds([&] {
       ForceField fresh(scene);
       EmbeddedRungeKutta again(fresh, embedded_tableau_from_argument("dopri5"));
       adaptive_simulate(again, run, settings, false);
-    }, n_runs, 0);
-    const double h = c.T / static_cast<double>(r.accepted);
-    std::fprintf(f, "dopri5_adaptive %.6e %lld %.6e %.6e %.6e %lld 0 0 0 0\n", h, r.accepted, t.wall, err_T, err_T,
-                 r.counters.rhs_evaluations);
-    std::fprintf(sink.table, "wp %s dopri5_adaptive %.6e %lld %.6e %.6e %.6e %lld 0 0 0 0 ok\n", c.name.c_str(), h,
-                 r.accepted, t.wall, err_T, err_T, r.counters.rhs_evaluations);
-    points.push_back({c.name, "dopri5_adaptive", h, tol, r.accepted, t.wall, err_T, r.counters, false, ""});
-    if (err_T < 1e-9 || first > max_seconds) break;
+    }, n_runs, 0).wall;
+    record(sink, f, points, point);
+    if (point.error < 1e-9 || first > max_seconds) break;
   }
   std::fprintf(f, "\n\n");
   file->commit();

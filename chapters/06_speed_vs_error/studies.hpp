@@ -102,7 +102,8 @@ struct WorkPoint {
   std::string config, method;
   double h = 0, tolerance = 0;
   long long steps = 0;
-  double seconds = 0, error = 0;
+  double seconds = 0;             ///< the median wall-clock time of the whole run to T
+  double error = 0, error_rms = 0;  ///< the largest particle error at T; the RMS over the sampled times
   cloth::StepCounters counters;
   bool dropped = false;
   std::string why;
