@@ -98,16 +98,18 @@ const WorkPoint* fastest(const std::vector<WorkPoint>& work, const std::string& 
   return best;
 }
 
-std::string run_text(const WorkPoint& p) {
-  const std::string how = p.method == "dopri5_adaptive" ? "tolerance " + power_of_ten(p.tolerance) : "h = " + step(p.h) + " s";
-  return method_title(p.method) + ", " + how + ", " + ms(p.seconds);
+// What distinguishes a run of the sweep from its method's others: its step, or the adaptive pair's tolerance.
+std::string setting(const WorkPoint& p) {
+  return p.method == "dopri5_adaptive" ? "tolerance " + power_of_ten(p.tolerance) : "h = " + step(p.h) + " s";
 }
+
+std::string run_text(const WorkPoint& p) { return method_title(p.method) + ", " + setting(p) + ", " + ms(p.seconds); }
 
 const std::vector<double> required_errors = {1e-1, 1e-2, 1e-4, 1e-6};
 
 void write_fastest(const std::string& dir, const std::vector<WorkPoint>& work, const std::vector<Config>& configs,
                    const std::string& command) {
-  std::vector<std::string> header = {"error"};
+  std::vector<std::string> header = {"error [m]"};
   for (const Config& c : configs) header.push_back(config_title(c));
   MarkdownTable table(header);
   // What the sentence under the table says: the fastest methods by required error, and how the adaptive pair fared.
@@ -116,7 +118,7 @@ void write_fastest(const std::string& dir, const std::vector<WorkPoint>& work, c
   double adaptive_best_ratio = 1e300, adaptive_worst_ratio = 0;
   int cells = 0;
   for (const double e : required_errors) {
-    std::vector<std::string> row = {power_of_ten(e) + " m"};
+    std::vector<std::string> row = {power_of_ten(e)};
     std::vector<std::pair<std::string, std::string>> cell_winners;  // method, configuration
     std::set<std::string> winners;
     for (const Config& c : configs) {
@@ -176,7 +178,8 @@ std::vector<std::string> study_fragment_names() {
           "implicit_variants.md", "stiff_pick.md", "scaling.md"};
 }
 
-void write_benchmark_fragments(const std::string& dir, const std::vector<Benchmark>& bench, const std::string& command) {
+void write_benchmark_fragments(const std::string& dir, const std::vector<Benchmark>& bench,
+                               const std::string& command) {
   MarkdownTable core({"quantity", "thread CPU [us]", "count"}, "lrr");
   for (const auto& [name, title] : std::vector<std::pair<std::string, std::string>>{
            {"force_evaluation", "one force evaluation"},
@@ -245,7 +248,8 @@ void write_study_fragments(const std::string& dir, const StudyResults& r, const 
     for (std::size_t i = 1; i < nz.t.size(); ++i)
       if (nz.shortest[i] < 1e-2 && nz.shortest[i - 1] >= 1e-2) ++dips;
     write_text_fragment(dir + "/near_zero.md",
-                        "In this run (RK4, h = " + g(nz.h) + " s) the shortest spring first falls below 0.5 L0 at t = " +
+                        "In this run (RK4, h = " + g(nz.h) +
+                            " s) the shortest spring first falls below 0.5 L0 at t = " +
                             first_below(0.5) + " and below 0.1 L0 at t = " + first_below(0.1) +
                             "; it is shortest, " + sci(nz.smallest) + " L0, at t = " + g(nz.t_smallest, 3) + " s (" +
                             nz.spring + "), and dips below 0.01 L0 " + std::to_string(dips) + " times before t = " +
@@ -284,7 +288,8 @@ void write_study_fragments(const std::string& dir, const StudyResults& r, const 
     MarkdownTable table(header, "l" + std::string(header.size() - 1, 'r'));
     std::vector<std::pair<std::string, double>> rows;
     for (const ObservedOrder& o : r.orders)
-      if (std::find(rows.begin(), rows.end(), std::make_pair(o.method, o.T)) == rows.end()) rows.emplace_back(o.method, o.T);
+      if (std::find(rows.begin(), rows.end(), std::make_pair(o.method, o.T)) == rows.end())
+        rows.emplace_back(o.method, o.T);
     for (const auto& [method, T] : rows) {
       std::vector<std::string> row = {method_title(method), g(T), "-"};
       std::vector<std::string> orders(divisions.size() - 1, "-");
@@ -345,8 +350,7 @@ void write_study_fragments(const std::string& dir, const StudyResults& r, const 
         const std::string why = p.why == "below_100x_reference_agreement"
                                     ? "error " + g(p.error) + " m, within 100 times the reference's uncertainty"
                                     : p.why;
-        table.add_row({config_title(c), method_title(p.method),
-                       p.method == "dopri5_adaptive" ? "tolerance " + power_of_ten(p.tolerance) : "h = " + step(p.h) + " s", why});
+        table.add_row({config_title(c), method_title(p.method), setting(p), why});
       }
     write_table_fragment(dir + "/dropped.md", table, command);
   }
@@ -361,7 +365,8 @@ void write_study_fragments(const std::string& dir, const StudyResults& r, const 
         std::vector<double> h, error;
         for (const WorkPoint& p : r.work)
           if (!p.dropped && p.config == c.name && p.method == m.label) h.push_back(p.h), error.push_back(p.error);
-        row.push_back(h.size() < 2 ? "-" : format_fixed(log_slope(h, error), 2) + " (" + std::to_string(h.size()) + ")");
+        const std::string points = " (" + std::to_string(h.size()) + ")";
+        row.push_back(h.size() < 2 ? "-" : format_fixed(log_slope(h, error), 2) + points);
       }
       table.add_row(row);
     }
@@ -439,7 +444,9 @@ void write_study_fragments(const std::string& dir, const StudyResults& r, const 
     row("RK4", "rk4", time, true);
     row("implicit Euler, direct", "implicit_euler_direct", time, true);
     row("of which factorization", "implicit_euler_direct",
-        [](const ScalingPoint& p) { return g(100 * p.factorization_share) + " %"; }, false);
+        [](const ScalingPoint& p) {
+          return std::to_string(std::lround(100 * p.factorization_per_step / p.mean_wall_per_step)) + " %";
+        }, false);
     row("implicit Euler, CG", "implicit_euler_cg", time, true);
     row("Newton iterations per step", "implicit_euler_cg",
         [](const ScalingPoint& p) { return g(p.newton_per_step); }, false);

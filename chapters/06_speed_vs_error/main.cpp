@@ -108,8 +108,8 @@ int main(int argc, char** argv) {
                                                check.agreement, sink);
       results.work.insert(results.work.end(), points.begin(), points.end());
     }
-    results.scaling = ch06::scaling(opt.scene, quick ? std::vector<int>{20, 40} : std::vector<int>{20, 40, 80, 160, 320},
-                                    quick ? 3 : 5, quick ? 1.0 : 2.0, sink);
+    const std::vector<int> sizes = quick ? std::vector<int>{20, 40} : std::vector<int>{20, 40, 80, 160, 320};
+    results.scaling = ch06::scaling(opt.scene, sizes, quick ? 3 : 5, quick ? 1.0 : 2.0, sink);
     table.commit();
     ch06::write_study_fragments(dir, results, configs, command);
     return 0;

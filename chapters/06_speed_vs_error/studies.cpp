@@ -359,6 +359,25 @@ std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, 
 }
 // [work_precision]
 
+namespace {
+
+// A grid size of the scaling study, kept: its line in scaling.dat and speed_vs_error.dat, and on the console.
+void record(const Sink& sink, std::FILE* f, std::vector<ScalingPoint>& points, const ScalingPoint& p, double h) {
+  std::fprintf(f, "%s %d %d %.6e %.6e %.6e %.6e %.3f %.2f %.6e\n", p.method.c_str(), p.size, p.springs,
+               p.wall_per_step, p.assembly_per_step, p.factorization_per_step, p.solve_per_step, p.newton_per_step,
+               p.cg_per_solve, p.cpu_per_step);
+  std::fprintf(sink.table, "scaling %dx%d %s %.6g %d %.6e - - - - - - - ok\n", p.size, p.size, p.method.c_str(), h,
+               p.springs, p.wall_per_step);
+  std::fflush(f);
+  std::printf("scaling %-20s %4dx%-4d %8d springs %10.3f ms/step (assembly %.3f, factorization %.3f, solve "
+              "%.3f ms), %.2f Newton/step, %.1f CG/solve\n",
+              p.method.c_str(), p.size, p.size, p.springs, 1e3 * p.wall_per_step, 1e3 * p.assembly_per_step,
+              1e3 * p.factorization_per_step, 1e3 * p.solve_per_step, p.newton_per_step, p.cg_per_solve);
+  points.push_back(p);
+}
+
+}  // namespace
+
 // [scaling]
 // Cost of one step against the grid size, at the report's h = 0.01 for the implicit methods and h = 1e-3 for
 // the explicit ones (the step changes the work per step only through Newton and CG iteration counts).
@@ -368,9 +387,8 @@ std::vector<ScalingPoint> scaling(const SceneParams& base, const std::vector<int
                       "# method grid springs seconds_per_step assembly factorization solve newton_per_step "
                       "cg_per_solve cpu_seconds_per_step  (blocks by method)");
   std::FILE* const f = file->get();
-  const std::vector<std::string> methods = {"explicit_euler", "rk4", "implicit_euler_direct", "implicit_euler_cg"};
-  std::vector<ScalingPoint> out;
-  for (const std::string& method : methods) {
+  std::vector<ScalingPoint> points;
+  for (const std::string method : {"explicit_euler", "rk4", "implicit_euler_direct", "implicit_euler_cg"}) {
     std::fprintf(f, "# %s\n", method.c_str());
     for (int size : sizes) {
       throw_if_interrupted();
@@ -389,41 +407,34 @@ std::vector<ScalingPoint> scaling(const SceneParams& base, const std::vector<int
       auto* ie = dynamic_cast<ImplicitEuler*>(stepper.get());
       if (ie) ie->reset_timing();
       stepper->reset_counters();
+      const auto start = std::chrono::steady_clock::now();
       const Seconds t = median_seconds(
           [&] {
             x = x0, v = v0;
             for (int k = 0; k < steps; ++k) stepper->step(h, x, v);
           },
           runs, 1);
-      const double per_step = t.wall / steps;
-      const auto total_steps = static_cast<double>(stepper->counters().steps);
-      double assembly = 0, factorization = 0, solve = 0;
+      // Per step: the median run's, and the mean over every step taken, which the parts of an implicit step are.
+      const StepCounters& n = stepper->counters();
+      const auto per_step = 1.0 / static_cast<double>(n.steps);
+      ScalingPoint point{method, size, scene.springs().size(), t.wall / steps, t.cpu / steps};
+      point.mean_wall_per_step =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() * per_step;
       if (ie) {
-        assembly = ie->timing().assembly / total_steps;
-        factorization = ie->timing().factorization / total_steps;
-        solve = ie->timing().solve / total_steps;
+        point.assembly_per_step = ie->timing().assembly * per_step;
+        point.factorization_per_step = ie->timing().factorization * per_step;
+        point.solve_per_step = ie->timing().solve * per_step;
       }
-      const double newton = static_cast<double>(stepper->counters().newton_iterations) / total_steps;
-      const double cg = stepper->counters().linear_solves > 0
-                            ? static_cast<double>(stepper->counters().cg_iterations) /
-                                  static_cast<double>(stepper->counters().linear_solves)
-                            : 0.0;
-      std::fprintf(f, "%s %d %d %.6e %.6e %.6e %.6e %.3f %.2f %.6e\n", method.c_str(), size, scene.springs().size(),
-                   per_step, assembly, factorization, solve, newton, cg, t.cpu / steps);
-      out.push_back({method, size, scene.springs().size(), t.cpu / steps, factorization / per_step, newton, cg});
-      std::fprintf(sink.table, "scaling %dx%d %s %.6g %d %.6e - - - - - - - ok\n", size, size, method.c_str(), h,
-                   scene.springs().size(), per_step);
-      std::fflush(f);
-      std::printf("scaling %-20s %4dx%-4d %8d springs %10.3f ms/step (assembly %.3f, factorization %.3f, solve "
-                  "%.3f ms), %.2f Newton/step, %.1f CG/solve\n",
-                  method.c_str(), size, size, scene.springs().size(), 1e3 * per_step, 1e3 * assembly,
-                  1e3 * factorization, 1e3 * solve, newton, cg);
-      if (per_step > max_step_seconds) break;  // larger grids would take minutes
+      point.newton_per_step = static_cast<double>(n.newton_iterations) * per_step;
+      point.cg_per_solve =
+          n.linear_solves > 0 ? static_cast<double>(n.cg_iterations) / static_cast<double>(n.linear_solves) : 0.0;
+      record(sink, f, points, point, h);
+      if (point.wall_per_step > max_step_seconds) break;  // larger grids would take minutes
     }
     std::fprintf(f, "\n\n");
   }
   file->commit();
-  return out;
+  return points;
 }
 // [scaling]
 

@@ -134,7 +134,10 @@ std::vector<ObservedOrder> observed_orders(const cloth::SceneParams& base, const
 struct ScalingPoint {
   std::string method;
   int size = 0, springs = 0;
-  double cpu_per_step = 0, factorization_share = 0, newton_per_step = 0, cg_per_solve = 0;
+  double wall_per_step = 0, cpu_per_step = 0;  ///< median seconds
+  double mean_wall_per_step = 0;                ///< over every step timed, warm-up included
+  double assembly_per_step = 0, factorization_per_step = 0, solve_per_step = 0;  ///< implicit steps, wall seconds
+  double newton_per_step = 0, cg_per_solve = 0;
 };
 /// A method stops growing the grid once a step costs more than `max_step_seconds`.
 std::vector<ScalingPoint> scaling(const cloth::SceneParams& base, const std::vector<int>& sizes, int runs,
