@@ -3,9 +3,11 @@
 // three configurations, and the cost of a step against the grid size. --quick is the reduced sweep the plots
 // target runs; without it the full sweep runs.
 #include "benchmarks.hpp"
+#include "fragments.hpp"
 #include "studies.hpp"
 
 #include "program/command_line.hpp"
+#include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
 
@@ -25,13 +27,16 @@ const std::vector<ch06::Config> configs = {
 // [configs]
 const std::vector<double> local_error_steps = {2e-3, 1e-3, 5e-4, 2.5e-4};
 
-// The files the program writes into --out: the micro-benchmarks' alone, or every study's.
+// The files the program writes into --out: the micro-benchmarks' alone, or every study's; the page's fragments
+// (fragments.hpp) among them.
 std::vector<std::string> output_names(bool bench_only) {
   std::vector<std::string> names = {"benchmarks.dat"};
+  for (const std::string& f : ch06::benchmark_fragment_names()) names.push_back(f);
   if (bench_only) return names;
   names.insert(names.end(), {"speed_vs_error.dat", "near_zero.dat", "orders.dat", "sensitivity.dat", "scaling.dat"});
   for (const double h : local_error_steps) names.push_back(ch06::local_error_name(h));
   for (const ch06::Config& c : configs) names.push_back("wp_" + c.name + ".dat");
+  for (const std::string& f : ch06::study_fragment_names()) names.push_back(f);
   return names;
 }
 
@@ -72,9 +77,11 @@ int main(int argc, char** argv) {
     std::vector<std::string> others = output_names(false);
     prepare_outputs(opt.run.out_dir, output_names(bench_only), others);
     const std::string dir = opt.run.out_dir;
+    const std::string command = reader_command(argc, argv);
 
     const auto bench = ch06::run_benchmarks(opt.scene, quick ? 5 : 9);
     write_benchmarks(dir, opt.scene, bench);
+    ch06::write_benchmark_fragments(dir, bench, command);
     if (bench_only) return 0;
 
     OutputFile table(dir + "/speed_vs_error.dat");
@@ -86,20 +93,25 @@ int main(int argc, char** argv) {
       std::fprintf(sink.table, "benchmark %dx%d %s - - %.6e - - - - - - - ok\n", opt.scene.grid.M, opt.scene.grid.N,
                    b.name.c_str(), 1e-6 * b.microseconds);
 
-    ch06::near_zero_springs(opt.scene, 1.0, quick ? 5e-4 : 5e-5, sink);
-    for (const double h : local_error_steps) ch06::local_error_along_trajectory(opt.scene, 1.0, h, sink);
-    ch06::observed_orders(opt.scene, {0.25, 1.0}, 6, quick ? 11 : 15, sink);
-    ch06::sensitivity(opt.scene, configs, quick ? 5e-4 : 5e-5, sink);
+    ch06::StudyResults results;
+    results.near_zero = ch06::near_zero_springs(opt.scene, 1.0, quick ? 5e-4 : 5e-5, sink);
+    for (const double h : local_error_steps)
+      results.local_errors.push_back(ch06::local_error_along_trajectory(opt.scene, 1.0, h, sink));
+    results.orders = ch06::observed_orders(opt.scene, {0.25, 1.0}, 6, quick ? 11 : 15, sink);
+    results.sensitivity = ch06::sensitivity(opt.scene, configs, quick ? 5e-4 : 5e-5, sink);
 
     const int samples = 16;
     for (const ch06::Config& c : configs) {
-      double agreement = 0;
-      const ch06::Trajectory ref = ch06::reference(opt.scene, c, samples, quick ? 12 : 15, sink, agreement);
-      ch06::work_precision(opt.scene, c, ref, samples, 4, quick ? 10 : 16, quick ? 0.1 : 4.0, 5, agreement, sink);
+      ch06::ReferenceCheck& check = results.references.emplace_back();
+      const ch06::Trajectory ref = ch06::reference(opt.scene, c, samples, quick ? 12 : 15, sink, check);
+      const auto points = ch06::work_precision(opt.scene, c, ref, samples, 4, quick ? 10 : 16, quick ? 0.1 : 4.0, 5,
+                                               check.agreement, sink);
+      results.work.insert(results.work.end(), points.begin(), points.end());
     }
-    ch06::scaling(opt.scene, quick ? std::vector<int>{20, 40} : std::vector<int>{20, 40, 80, 160, 320},
-                  quick ? 3 : 5, quick ? 1.0 : 2.0, sink);
+    const std::vector<int> sizes = quick ? std::vector<int>{20, 40} : std::vector<int>{20, 40, 80, 160, 320};
+    results.scaling = ch06::scaling(opt.scene, sizes, quick ? 3 : 5, quick ? 1.0 : 2.0, sink);
     table.commit();
+    ch06::write_study_fragments(dir, results, configs, command);
     return 0;
   });
 }

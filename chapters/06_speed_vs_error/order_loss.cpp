@@ -6,6 +6,7 @@
 #include "integrators/method_registry.hpp"
 #include "program/interrupt.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -23,7 +24,7 @@ std::string local_error_name(double h) { return "local_error_h" + std::to_string
 // jump of J = 2 K L0 / m in a particle's acceleration inside one step. A step that does not resolve the instant
 // of the jump misweights it whatever its order: across a jump, one RK4 step against two half steps differ by up
 // to J h / 4 in velocity and J h^2 / 6 in position (times 16/15 here), at the worst instant of the jump.
-void local_error_along_trajectory(const SceneParams& base, double T, double h, const Sink& sink) {
+LocalError local_error_along_trajectory(const SceneParams& base, double T, double h, const Sink& sink) {
   const Scene scene(base);
   ForceField field(scene);
   const auto rk4 = make_stepper("rk4", field);
@@ -37,6 +38,7 @@ void local_error_along_trajectory(const SceneParams& base, double T, double h, c
   const auto steps = static_cast<long long>(std::llround(T / h));
   double worst = 0, t_worst = 0, worst_velocity = 0;
   long long jump_steps = 0;
+  std::vector<double> smooth;  // the local errors of the steps without a jump
   for (long long k = 0; k < steps; ++k) {
     throw_if_interrupted();
     x_full = x, v_full = v;
@@ -51,7 +53,10 @@ void local_error_along_trajectory(const SceneParams& base, double T, double h, c
                  shortest_spring(scene, x, all).length_over_rest);
     if (local > worst) worst = local, t_worst = t;
     worst_velocity = std::max(worst_velocity, local_velocity);
-    if (local_velocity > 0.01 * jump * h) ++jump_steps;  // an error of the jump's size, not of a smooth step's
+    if (local_velocity > 0.01 * jump * h)  // an error of the jump's size, not of a smooth step's
+      ++jump_steps;
+    else
+      smooth.push_back(local);
     x = x_half, v = v_half;  // continue on the more accurate branch
   }
   file->commit();
@@ -61,15 +66,18 @@ void local_error_along_trajectory(const SceneParams& base, double T, double h, c
               jump_steps, steps);
   std::fprintf(sink.table, "local_error K%g_D%g rk4 %.6g %lld - %.6e %.6e - - - - - ok\n", base.stiffness,
                base.damping, h, steps, worst, worst_velocity);
+  std::nth_element(smooth.begin(), smooth.begin() + static_cast<long>(smooth.size() / 2), smooth.end());
+  return {h, jump, steps, jump_steps, worst, worst_velocity, smooth.empty() ? 0.0 : smooth[smooth.size() / 2]};
 }
 // [local_error]
 
 // [observed_orders]
 // Observed order without a reference: with d_k = max over particles |x_{h_k}(T) - x_{h_k / 2}(T)| and
 // h_k = T / 2^k, d_k ~ C h_k^p, so p ~ log2(d_k / d_{k+1}) wherever the error is in its asymptotic regime.
-void observed_orders(const SceneParams& base, const std::vector<double>& horizons, int k_min, int k_max,
-                     const Sink& sink) {
+std::vector<ObservedOrder> observed_orders(const SceneParams& base, const std::vector<double>& horizons, int k_min,
+                                           int k_max, const Sink& sink) {
   const Scene scene(base);
+  std::vector<ObservedOrder> out;
   const auto file = open(sink, "orders.dat",
                       "# method T h difference_to_half_step observed_order  (blocks by method and T)");
   std::FILE* const f = file->get();
@@ -91,6 +99,7 @@ void observed_orders(const SceneParams& base, const std::vector<double>& horizon
           const double h = T / static_cast<double>(1LL << (k - 1));
           const double difference = max_particle_distance(previous, run.x.back());
           const double order = previous_difference > 0 ? std::log2(previous_difference / difference) : NAN;
+          out.push_back({method, T, h, difference, order});
           std::fprintf(f, "%s %g %.6e %.6e %.3f\n", method, T, h, difference, order);
           std::fprintf(sink.table, "observed_order K%g_D%g %s %.6g %lld - %.6e %.3f - - - - - ok\n",
                        base.stiffness, base.damping, method, h, 1LL << (k - 1), difference, order);
@@ -102,6 +111,7 @@ void observed_orders(const SceneParams& base, const std::vector<double>& horizon
     }
   }
   file->commit();
+  return out;
 }
 // [observed_orders]
 

@@ -107,7 +107,7 @@ set format y '10^{%L}'
 set xlabel 'springs'
 set ylabel 'thread CPU time per step [s] (median)'
 set title 'Cost per step against grid size, K = 50, D = 0 (explicit h = 1e-3, implicit h = 0.01)'
-# No fitted exponents: the quick run measures too few sizes to fit one (the page quotes the full run's, fitted
+# No fitted exponents: the quick run measures too few sizes to fit one (the full sweep fits them
 # over five sizes). Grey guide lines of slope 1 and 3/2 through each method's smallest grid show how linear
 # and n^{3/2} growth would look.
 # (One column at a time: two-column stats fits a line, and warns when it has only two points.)
