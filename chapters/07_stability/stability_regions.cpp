@@ -12,6 +12,15 @@
 
 namespace ch07 {
 
+std::string method_label(const std::string& method) {
+  if (method == "explicit_euler") return "explicit Euler";
+  if (method == "symplectic_euler") return "symplectic Euler";
+  if (method == "implicit_euler") return "implicit Euler";
+  if (method == "heun") return "Heun";
+  if (method == "rk4") return "RK4";
+  return method;
+}
+
 StabilityModel stability_model(const std::string& method) {
   const cloth::Method& row = cloth::find_method(method);
   StabilityModel model{method, StabilityModel::Kind::polynomial, {}, nullptr};
