@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace ch07 {
 
@@ -183,7 +184,7 @@ CaseSpectra case_spectra(const std::string& dir, const SceneParams& scene, const
                 "iteration %.2f in %d iterations; h max|lambda| = %.3f\n",
                 c.K, c.D, out.sag, eq.iterations, out.rest_largest, out.sagged_largest, sagged.how.c_str(), pw.magnitude,
                 pw.iterations, h * out.sagged_largest);
-  out.line = line;
+  out.line = wrapped(std::string(line, std::strlen(line) - 1));
   return out;
 }
 
@@ -213,7 +214,7 @@ std::vector<std::pair<std::string, std::string>> report_spectra(const std::strin
     const cloth::ReportCase& c = cloth::report_cases[k];
     cases[k] = case_spectra(dir, scene, rest, equilibria.at(c.K), c, h, dense_damped);
   });
-  std::string transcript = rest_line;
+  std::string transcript = wrapped(std::string(rest_line, std::strlen(rest_line) - 1));
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const CaseSpectra& r = cases[k];
     const std::string tag = cloth::report_cases[k].name();

@@ -298,7 +298,10 @@ std::vector<std::pair<std::string, std::string>> hmax_sweep(const std::string& d
   write_hmax_table(dir + "/hmax_table.md", jobs, sweep, command);
   cloth::OutputFile implicit(dir + "/implicit_euler.txt");
   for (const Job& job : jobs)
-    if (job.method == "implicit_euler") std::fprintf(implicit.get(), "K = %g, D = %g: %s\n", job.K, job.D, job.outcome.c_str());
+    if (job.method == "implicit_euler") {
+      const std::string line = "K = " + cloth::format_number(job.K) + ", D = " + cloth::format_number(job.D) + ": " + job.outcome;
+      std::fputs(wrapped(line).c_str(), implicit.get());
+    }
   implicit.commit();
   const auto skipped = std::count_if(jobs.begin(), jobs.end(), [](const Job& j) { return j.skipped; });
   return {{"sweep_jobs", std::to_string(jobs.size())}, {"sweep_jobs_not_measured", std::to_string(skipped)}};
