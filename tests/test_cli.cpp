@@ -10,6 +10,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -173,6 +174,24 @@ TEST_CASE("CommandLine::parse refuses bad chapter flags with the flag's name and
   // A negative number is a value, not a flag.
   CHECK(error_of({"--v0", "-5"}) == "accepted");
   CHECK(error_of({"--v0", "-.5"}) == "accepted");
+}
+
+TEST_CASE("a program's own default for a common flag: used, printed by --help, overridden by the reader") {
+  cloth::CommandLine cli("prog", "test");
+  cli.use_common({"--K", "--t-end", "--out"});
+  CHECK_THROWS_AS(cli.set_default("--dt", "0.5"), std::logic_error);  // a flag the program does not accept
+  cli.set_default("--t-end", "1");
+  const auto t_end_of = [&](std::vector<const char*> argv) {
+    argv.insert(argv.begin(), "prog");
+    return cli.parse(static_cast<int>(argv.size()), argv.data()).run.t_end;
+  };
+  CHECK(t_end_of({}) == 1.0);
+  CHECK(t_end_of({"--t-end", "3"}) == 3.0);
+  CHECK(cli.usage().find("simulated time [s] (default 1)") != std::string::npos);
+  CHECK(cli.usage().find("(default 2)") == std::string::npos);
+  cli.set_default("--K", "-4");  // a default the flag refuses is the program's bug, named as such
+  const char* argv[] = {"prog"};
+  CHECK_THROWS_WITH_AS(cli.parse(1, argv), "--K (prog's default): expected a number > 0, got -4", cloth::InputError);
 }
 
 TEST_CASE("a grid too large is refused before anything is allocated") {

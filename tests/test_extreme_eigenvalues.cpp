@@ -25,13 +25,21 @@ SceneParams small_cloth(double K, double D) {
   return p;
 }
 
+/// The small cloth at (K, D), its forces, and its sagged equilibrium: the state every check below linearises at.
+struct SaggedCloth {
+  Scene scene;
+  ForceField field;
+  Equilibrium eq;
+  SaggedCloth(double K, double D) : scene(small_cloth(K, D)), field(scene), eq(static_equilibrium(field)) {
+    REQUIRE(eq.converged);
+  }
+};
+
 }  // namespace
 
 TEST_CASE("Lanczos: the fastest damping rate is the dense solver's largest eigenvalue of -M^{-1} df/dv") {
-  const Scene scene(small_cloth(200, 20));
-  ForceField field(scene);
-  const Equilibrium eq = static_equilibrium(field);
-  REQUIRE(eq.converged);
+  SaggedCloth cloth(200, 20);
+  auto& [scene, field, eq] = cloth;
   const Vector v = Vector::Zero(eq.x.size());
   SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
   field.jacobians(eq.x, v, dfdx, dfdv);
@@ -45,10 +53,8 @@ TEST_CASE("Lanczos: the fastest damping rate is the dense solver's largest eigen
 }
 
 TEST_CASE("Lanczos: the largest omega^2 of the sagged cloth, in order") {
-  const Scene scene(small_cloth(50, 0));
-  ForceField field(scene);
-  const Equilibrium eq = static_equilibrium(field);
-  REQUIRE(eq.converged);
+  SaggedCloth cloth(50, 0);
+  auto& [scene, field, eq] = cloth;
   std::vector<double> dense = stiffness_eigenvalues(field, eq.x);
   std::sort(dense.begin(), dense.end(), std::greater<>());
   const std::vector<double> top = largest_stiffness_eigenvalues(field, eq.x, 5);
@@ -57,10 +63,8 @@ TEST_CASE("Lanczos: the largest omega^2 of the sagged cloth, in order") {
 }
 
 TEST_CASE("Arnoldi: the largest |lambda| of the damped sagged cloth, conjugate pairs whole") {
-  const Scene scene(small_cloth(200, 20));
-  ForceField field(scene);
-  const Equilibrium eq = static_equilibrium(field);
-  REQUIRE(eq.converged);
+  SaggedCloth cloth(200, 20);
+  auto& [scene, field, eq] = cloth;
   const Vector zero = Vector::Zero(eq.x.size());
   std::vector<std::complex<double>> dense = dense_spectrum(field, eq.x, zero);
   std::sort(dense.begin(), dense.end(), [](auto a, auto b) { return std::abs(a) > std::abs(b); });

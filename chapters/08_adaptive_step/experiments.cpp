@@ -113,6 +113,19 @@ void pair_summary(const Options& opt, const std::vector<double>& tolerances, con
 // A jump J in the acceleration at t0 + theta h, inside a step: stage i sees it when c_i > theta, so the step
 // gains J h sum_{c_i > theta} b_i of velocity where the truth gains J h (1 - theta), and the estimate reports
 // J h sum_{c_i > theta} (b_i - bhat_i). Per unit J h: the true error of the step and what the pair estimates.
+struct JumpResponse {
+  double true_error, estimate;
+};
+JumpResponse response_to_jump(const ButcherTableau& t, double theta) {
+  double seen_b = 0, seen_d = 0;
+  for (int i = 0; i < t.stages(); ++i)
+    if (t.c[i] > theta) seen_b += t.b[i], seen_d += t.b[i] - t.b_hat[i];
+  return {seen_b - (1 - theta), seen_d};
+}
+// [jump_response]
+
+// Every pair's response to a jump at 1001 instants across the step (jump_response.dat, the figure), and each
+// pair's extremes (jump_response.md, the page's table).
 void jump_response(const Options& opt, const std::string& command) {
   const std::vector<const Method*> pairs = methods_of(MethodFamily::embedded_runge_kutta);
   // Per pair: the largest true error, the largest estimate, and the largest estimate of a jump before 0.8 h.
@@ -127,20 +140,16 @@ void jump_response(const Options& opt, const std::string& command) {
     const double theta = (k + 0.5) / 1001.0;
     std::fprintf(out.get(), "%.6f", theta);
     for (std::size_t p = 0; p < pairs.size(); ++p) {
-      const ButcherTableau& t = *pairs[p]->tableau;
-      double seen_b = 0, seen_d = 0;
-      for (int i = 0; i < t.stages(); ++i)
-        if (t.c[i] > theta) seen_b += t.b[i], seen_d += t.b[i] - t.b_hat[i];
-      std::fprintf(out.get(), " %.6e %.6e", seen_b - (1 - theta), seen_d);
+      const JumpResponse r = response_to_jump(*pairs[p]->tableau, theta);
+      std::fprintf(out.get(), " %.6e %.6e", r.true_error, r.estimate);
       Extremes& w = worst[p];
-      w.truth = std::max(w.truth, std::abs(seen_b - (1 - theta)));
-      w.estimate = std::max(w.estimate, std::abs(seen_d));
-      if (theta < 0.8) w.early_estimate = std::max(w.early_estimate, std::abs(seen_d));
+      w.truth = std::max(w.truth, std::abs(r.true_error));
+      w.estimate = std::max(w.estimate, std::abs(r.estimate));
+      if (theta < 0.8) w.early_estimate = std::max(w.early_estimate, std::abs(r.estimate));
     }
     std::fprintf(out.get(), "\n");
   }
   out.commit();
-  // [jump_response]
   MarkdownTable table({"pair", "largest true error [J h]", "largest estimate [J h]",
                        "largest estimate of a jump before 0.8 h [J h]"},
                       "lrrr");

@@ -230,29 +230,34 @@ Timed project_run(ForceField& field, const std::string& method, double h, double
   return t;
 }
 
+/// Both sides' runs on the stiff cloth: CVODE's at each tolerance, the book's at each step.
+struct StiffRuns {
+  std::vector<Timed> cvode, book;
+  int repeats = 1;
+};
+
 // [speed_comparison]
 // On the stiff cloth (5000, 20) over T = 0.4 s: CVODE's BDF at a ladder of tolerances and the book's SDIRKs at a
-// ladder of steps, each Newton tolerance a tenth or a hundredth of the error it aims at. For each error level, the
-// fastest run of each side that reaches it, and the ratio of their processor times.
-void stiff_comparison(const SceneParams& base, bool quick, const std::string& dir, const std::string& command) {
+// ladder of steps, each Newton tolerance a tenth or a hundredth of the error it aims at.
+StiffRuns stiff_runs(const SceneParams& base, bool quick) {
   SceneParams p = base;
   p.stiffness = 5000;
   p.damping = 20;
   const double T = 0.4;
-  const int repeats = quick ? 1 : 3;
+  StiffRuns runs;
+  runs.repeats = quick ? 1 : 3;
   const Scene scene(p);
   ForceField field(scene);
   const Vector reference = rk4_positions(field, T, 2e-5);
-  std::vector<Timed> cvode, book;
   for (const double tol : {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5}) {
     Timed t{"cvode-bdf", "rtol = atol = " + format_number(tol)};
-    for (int k = 0; k < repeats; ++k) {
+    for (int k = 0; k < runs.repeats; ++k) {
       Vector x, v;
       const Outcome out = sundials_run("cvode-bdf", field, T, tol, tol, 0, x, v);
       t.seconds = std::min(t.seconds, out.seconds);
       if (out.ok) t.error = (x - reference).lpNorm<Eigen::Infinity>();
     }
-    cvode.push_back(t);
+    runs.cvode.push_back(t);
   }
   const struct {
     const char* method;
@@ -261,28 +266,38 @@ void stiff_comparison(const SceneParams& base, bool quick, const std::string& di
                    {"sdirk3", 0.0016, 1e-4},  {"sdirk3", 0.00125, 1e-4}, {"sdirk3", 0.0008, 1e-5},
                    {"sdirk3", 0.000625, 1e-5}};
   for (const auto& r : book_runs)
-    book.push_back(project_run(field, r.method, r.h, r.newton_tol, NewtonVariant::modified, T, reference, repeats));
+    runs.book.push_back(project_run(field, r.method, r.h, r.newton_tol, NewtonVariant::modified, T, reference, runs.repeats));
+  return runs;
+}
+
+// For an error level, the fastest of `runs` that reaches it (nullptr when none does).
+const Timed* fastest_reaching(const std::vector<Timed>& runs, double level) {
+  const Timed* best = nullptr;
+  for (const Timed& t : runs)
+    if (t.error <= level && (best == nullptr || t.seconds < best->seconds)) best = &t;
+  return best;
+}
+// [speed_comparison]
+
+// Every run into stiff_runs.dat (the figure), and for each error level the fastest run of each side and the ratio
+// of their processor times into stiff_comparison.md (the page's table).
+void stiff_comparison(const SceneParams& base, bool quick, const std::string& dir, const std::string& command) {
+  const StiffRuns runs = stiff_runs(base, quick);
   OutputFile all(dir + "/stiff_runs.dat");
   std::fprintf(all.get(), "# stiff cloth K = 5000, D = 20, T = 0.4 s; error against RK4 at h = 2e-5 [m], processor "
-               "seconds (best of %d)\n# index 0: CVODE BDF + KLU, index 1: the book's methods\n", repeats);
-  for (const auto* side : {&cvode, &book}) {
+               "seconds (best of %d)\n# index 0: CVODE BDF + KLU, index 1: the book's methods\n", runs.repeats);
+  for (const auto* side : {&runs.cvode, &runs.book}) {
     for (const Timed& t : *side)
       std::fprintf(all.get(), "%.6e %.6f \"%s %s\"\n", t.error, t.seconds, t.solver.c_str(), t.setting.c_str());
     std::fprintf(all.get(), "\n\n");
   }
   all.commit();
-  const auto fastest = [](const std::vector<Timed>& runs, double level) {
-    const Timed* best = nullptr;
-    for (const Timed& t : runs)
-      if (t.error <= level && (best == nullptr || t.seconds < best->seconds)) best = &t;
-    return best;
-  };
   MarkdownTable table({"error level [m]", "CVODE BDF + KLU, fastest run reaching it", "error [m]", "time [s]",
                        "the book's fastest run reaching it", "error [m]", "time [s]", "time ratio"},
                       "rlrrlrrr");
   for (const double level : {1e-2, 1e-3, 1e-4}) {
-    const Timed* c = fastest(cvode, level);
-    const Timed* b = fastest(book, level);
+    const Timed* c = fastest_reaching(runs.cvode, level);
+    const Timed* b = fastest_reaching(runs.book, level);
     const auto cells = [](const Timed* t) -> std::vector<std::string> {
       if (t == nullptr) return {"none", "", ""};
       return {t->solver + ", " + t->setting, format_number(t->error, 2), format_number(t->seconds, 2)};
@@ -295,7 +310,6 @@ void stiff_comparison(const SceneParams& base, bool quick, const std::string& di
   }
   write_table_fragment(dir + "/stiff_comparison.md", table, command);
 }
-// [speed_comparison]
 
 // On the report scene (200, 20), implicit Euler at h = 0.01 s over T = 1 s: ARKODE given the one-stage table at
 // that fixed step, and the book's implicit Euler with full and with modified Newton; the time of each, and how far

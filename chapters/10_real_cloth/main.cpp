@@ -7,6 +7,7 @@
 
 #include "analysis/fastest_modes.hpp"
 #include "analysis/lattice_frequency.hpp"
+#include "base/format_number.hpp"
 #include "model/fabric.hpp"
 #include "program/command_line.hpp"
 #include "program/interrupt.hpp"
@@ -215,6 +216,16 @@ struct Curves {
   std::vector<Measurement> rows;
 };
 
+/// Prints one sweep's reference and every run of it, as the progress of the program.
+void print_curves(const Curves& c) {
+  const std::string check = c.reference_agreement < 0 ? "not checked against the 3/8 rule"
+                                                       : "3/8 rule at twice as many: " + format_number(c.reference_agreement, 3) + " m";
+  std::printf("K %g, T %g: reference RK4 with %lld steps (%s)\n", c.K, c.T, c.reference_steps, check.c_str());
+  for (const Measurement& m : c.rows)
+    std::printf("  %-20s h %-10.4g steps %-7lld %8.4f s  error %.3e %s\n", m.method.c_str(), m.h, m.steps, m.seconds,
+                m.error, m.ok ? "" : m.message.c_str());
+}
+
 // [sweep]
 // Every method at its candidate steps: explicit methods from 95 % of their predicted stable step downwards, implicit ones from one step per 1/30 s frame downwards, each halving
 // until the error at T is below 0.5 mm, a run costs more than `budget` CPU seconds, or `max_halvings` halvings.
@@ -231,8 +242,6 @@ Curves error_curves(double K, double T, const std::vector<std::string>& methods,
   c.reference_steps = static_cast<long long>(std::ceil(T / (2 * std::sqrt(2.0) / omega / reference_division)));
   const Vector ref = ch10::reference(scene, T, c.reference_steps, check_reference, c.reference_agreement);
   c.displacement = ch10::max_distance(ref, scene.initial_positions());
-  std::printf("K %g, T %g: reference RK4 with %lld steps (3/8 rule at twice as many: %.2e m)\n", K, T,
-              c.reference_steps, c.reference_agreement);
   for (const std::string& method : methods) {
     long long steps = 0;
     if (ch10::is_explicit(method)) {
@@ -246,8 +255,6 @@ Curves error_curves(double K, double T, const std::vector<std::string>& methods,
       Measurement m{method, T / static_cast<double>(steps), steps, r.seconds, NAN, r.ok, r.message, r.counters};
       if (r.ok) m.error = ch10::max_distance(r.x, ref);
       c.rows.push_back(m);
-      std::printf("  %-20s h %-10.4g steps %-7lld %8.4f s  error %.3e %s\n", method.c_str(), m.h, steps, m.seconds,
-                  m.error, r.ok ? "" : r.message.c_str());
       if ((r.ok && m.error < 5e-4) || r.seconds > budget) break;
     }
   }
@@ -535,11 +542,17 @@ int main(int argc, char** argv) {
     const double budget = s.quick ? 0.08 : 2.0;
     const int halvings = s.quick ? 4 : 7;
     const double division = s.quick ? 3 : 4;
-    for (double K : stiffnesses)
+    for (double K : stiffnesses) {
       curves[K] = error_curves(K, 0.5, methods, !s.quick && K <= 1e5, budget, halvings, division);
+      print_curves(curves[K]);
+    }
     std::string summary;
     practitioner(s, curves[1e5], methods, summary);
-    if (!s.quick) practitioner(s, error_curves(1e5, 1.0, methods, true, budget, halvings, division), methods, summary);
+    if (!s.quick) {
+      const Curves long_run = error_curves(1e5, 1.0, methods, true, budget, halvings, division);
+      print_curves(long_run);
+      practitioner(s, long_run, methods, summary);
+    }
     std::fputs(summary.c_str(), stdout);
     ch10::write_text(s.out, "practitioner_summary.txt", summary);
     for (const auto& [K, c] : curves) write_curves(s, c, format("K%g", K));

@@ -193,6 +193,16 @@ void CommandLine::use_common(std::initializer_list<const char*> flags) {
     if (find_common(name) == nullptr) throw std::logic_error(std::string("use_common: '") + name + "' is not a common flag");
 }
 
+void CommandLine::set_default(const std::string& flag, std::string value) {
+  if (!uses(flag)) throw std::logic_error("set_default: " + program_ + " does not accept " + flag);
+  for (auto& [name, fallback] : defaults_)
+    if (name == flag) {
+      fallback = std::move(value);
+      return;
+    }
+  defaults_.emplace_back(flag, std::move(value));
+}
+
 bool CommandLine::uses(const std::string& flag) const {
   return std::find(common_.begin(), common_.end(), flag) != common_.end();
 }
@@ -219,8 +229,10 @@ std::string CommandLine::usage() const {
       std::string accepted = f.accepted;
       // Without --dt (an adaptive program) T is not bounded below by a step.
       if (const auto at = accepted.find(", >= dt"); at != std::string::npos && !uses("--dt")) accepted.erase(at);
-      line(std::string(f.name) + " " + f.value_name, accepted,
-           std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback));
+      std::string fallback = std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback);
+      for (const auto& [name, value] : defaults_)
+        if (name == f.name) fallback = value;
+      line(std::string(f.name) + " " + f.value_name, accepted, fallback);
     }
   line("--help", "this text", "");
   if (!chapter_flags_.empty()) {
@@ -238,6 +250,14 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
   opt.run.out_dir = program_;
   opt.run.stop = &interrupt_flag();
   std::string grid_text;
+  // The program's own defaults first, so that what the reader types overrides them.
+  for (const auto& [flag, value] : defaults_) {
+    try {
+      set_common(opt, grid_text, flag, value);
+    } catch (const InputError& e) {
+      throw InputError(flag + " (" + program_ + "'s default): " + e.what());
+    }
+  }
   std::vector<std::pair<std::string, std::string>> given;  // flag and value, to refuse a flag given twice
   for (int k = 1; k < argc; ++k) {
     const std::string flag = argv[k];

@@ -8,6 +8,7 @@
 #include <functional>
 #include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cloth {
@@ -33,6 +34,11 @@ class CommandLine {
   /// others are refused as unknown and left out of --help. Throws std::logic_error on a name that is not one.
   void use_common(std::initializer_list<const char*> flags);
 
+  /// Gives the common flag `flag` this program's own default `value` (the text a reader would type), which
+  /// --help then prints: `cli.set_default("--t-end", "1")`. Throws std::logic_error when the program does not
+  /// accept `flag` (call use_common first), and InputError from parse when `value` is not one it accepts.
+  void set_default(const std::string& flag, std::string value);
+
   /// A chapter flag taking a value; `set` throws InputError (message without the flag name) when it is bad.
   void add_value(std::string flag, std::string value_name, std::string help, std::function<void(const std::string&)> set);
   /// A chapter flag without a value.
@@ -57,6 +63,7 @@ class CommandLine {
   };
   std::string program_, summary_;
   std::vector<std::string> common_;  ///< the common flags accepted, in the order --help lists them
+  std::vector<std::pair<std::string, std::string>> defaults_;  ///< the program's own defaults: flag, value
   std::vector<Flag> chapter_flags_;
 };
 
