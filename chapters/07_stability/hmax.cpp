@@ -5,6 +5,7 @@
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "model/report_cases.hpp"
+#include "program/fragment.hpp"
 #include "program/interrupt.hpp"
 #include "program/output.hpp"
 #include "program/parallel_runs.hpp"
@@ -85,6 +86,8 @@ struct Job {
   int runs = 0;
   std::string outcome;  // implicit Euler's probes, or why the job was skipped
   bool skipped = false;
+  Prediction rest;             // predicted at the rest state
+  double sagged_strict = NAN;  // predicted at the sagged equilibrium (nan: n/a)
 };
 
 // Brackets the boundary by doubling or halving from the guess, then bisects it geometrically.
@@ -161,11 +164,56 @@ int stages(const StabilityModel& model) {
   return model.kind == StabilityModel::Kind::polynomial ? static_cast<int>(model.polynomial.size()) - 1 : 1;
 }
 
+// One cell of the book's table: "rest / sagged; measured bracket" (see hmax_table.md in hmax_sweep).
+std::string table_cell(const Job& job, const SweepSettings& sweep) {
+  const auto n = [](double x) { return cloth::format_number(x, 3); };
+  // A method unstable on the imaginary axis (explicit Euler, Heun) has strict limit 0 on an undamped cloth: what
+  // the search returns there is set by the tolerance of |R| <= 1 + 1e-12, not by the method.
+  const Mode imaginary = {Complex(0, 0.01), Complex(0, -0.01)};
+  const bool no_strict_limit =
+      job.D == 0 && growth_factor(stability_model(job.method), 1.0, {imaginary}) > 1 + 1e-12;
+  std::string predicted = no_strict_limit ? "0 (" + n(sweep.T) + "-s doubling: " + n(job.rest.horizon) + ")"
+                                          : n(job.rest.strict) + " / " +
+                                                (std::isnan(job.sagged_strict) ? "n/a" : n(job.sagged_strict));
+  std::string measured;
+  if (job.skipped) measured = "not measured (budget)";
+  else if (job.h > 0 && job.h_fail > 0) measured = "[" + n(job.h) + ", " + n(job.h_fail) + "]";
+  else if (job.h > 0) measured = ">= " + n(job.h) + " (ceiling)";
+  else if (job.h_fail > sweep.h_floor) measured = "below " + n(job.h_fail) + " (budget)";
+  else measured = "below " + n(sweep.h_floor);
+  return predicted + "; " + measured;
+}
+
+// hmax_table.md: predicted against measured h_max for each explicit method and D, at the smallest, the middle and
+// the largest K of the sweep (10, 1000 and 1e5 by default).
+void write_hmax_table(const std::string& path, const std::vector<Job>& jobs, const SweepSettings& sweep,
+                      const std::string& command) {
+  const std::vector<double>& Ks = sweep.stiffnesses;
+  const std::vector<double> columns = {Ks.front(), Ks[Ks.size() / 2], Ks.back()};
+  std::vector<std::string> header = {"method, D"};
+  for (double K : columns) header.push_back("K = " + cloth::format_number(K));
+  cloth::MarkdownTable table(header);
+  std::vector<std::string> methods = {"rk4", "symplectic_euler", "explicit_euler", "heun"};
+  for (const std::string& m : sweep.methods)
+    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+  for (double D : sweep.dampings)
+    for (const std::string& method : methods) {
+      std::vector<std::string> row = {method_label(method) + ", " + cloth::format_number(D)};
+      for (double K : columns) {
+        const auto job = std::find_if(jobs.begin(), jobs.end(),
+                                      [&](const Job& j) { return j.K == K && j.D == D && j.method == method; });
+        row.push_back(job == jobs.end() ? "" : table_cell(*job, sweep));
+      }
+      table.add_row(row);
+    }
+  cloth::write_table_fragment(path, table, command);
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> hmax_sweep(const std::string& dir, const SceneParams& scene,
                                                             const RestSpectrum& rest, Equilibria& equilibria,
-                                                            const SweepSettings& sweep) {
+                                                            const SweepSettings& sweep, const std::string& command) {
   // The predictions at each (D, K), independent of each other: computed on every thread, written in order.
   struct Cell {
     double K = 0, D = 0;
@@ -196,7 +244,7 @@ std::vector<std::pair<std::string, std::string>> hmax_sweep(const std::string& d
       char line[160];
       std::snprintf(line, sizeof line, "%g %g %s %.6g %.6g %.6g\n", K, D, method.c_str(), r.strict, r.horizon, sagged_strict);
       cells[c].lines += line;
-      Job job{K, D, method, r.strict > 0 ? r.strict : r.horizon, e.gravity + e.spring, 0, 0, 0, {}, false};
+      Job job{K, D, method, r.strict > 0 ? r.strict : r.horizon, e.gravity + e.spring, 0, 0, 0, {}, false, r, sagged_strict};
       // A run near the predicted h costs T / h steps of `stages` right-hand sides over every unknown.
       const double h = std::clamp(job.guess, sweep.h_floor, sweep.h_ceiling);
       skip_over_budget(job, h, sweep.T / h * stages(model) * static_cast<double>(eq.x.size()), sweep.run_budget);
@@ -206,7 +254,7 @@ std::vector<std::pair<std::string, std::string>> hmax_sweep(const std::string& d
     // there measured hundreds to thousands of right-hand sides' worth (assembly, factorization, Newton
     // iterations on the strongly sagging cloth), counted as 1000.
     if (K == sweep.stiffnesses.front() || K == sweep.stiffnesses.back() || std::abs(std::log10(K) - 3) < 1e-9) {
-      Job job{K, D, "implicit_euler", 0.1, e.gravity + e.spring, 0, 0, 0, {}, false};
+      Job job{K, D, "implicit_euler", 0.1, e.gravity + e.spring, 0, 0, 0, {}, false, {}, NAN};
       skip_over_budget(job, 0.1, sweep.T / 0.1 * 1000 * static_cast<double>(eq.x.size()), sweep.run_budget);
       cells[c].jobs.push_back(job);
     }
@@ -247,9 +295,13 @@ std::vector<std::pair<std::string, std::string>> hmax_sweep(const std::string& d
   for (const Job& job : jobs)
     std::fprintf(measured.get(), "%g %g %s %.6g %.6g %d\n", job.K, job.D, job.method.c_str(), job.h, job.h_fail, job.runs);
   measured.commit();
+  write_hmax_table(dir + "/hmax_table.md", jobs, sweep, command);
   cloth::OutputFile implicit(dir + "/implicit_euler.txt");
   for (const Job& job : jobs)
-    if (job.method == "implicit_euler") std::fprintf(implicit.get(), "K = %g, D = %g: %s\n", job.K, job.D, job.outcome.c_str());
+    if (job.method == "implicit_euler") {
+      const std::string line = "K = " + cloth::format_number(job.K) + ", D = " + cloth::format_number(job.D) + ": " + job.outcome;
+      std::fputs(wrapped(line).c_str(), implicit.get());
+    }
   implicit.commit();
   const auto skipped = std::count_if(jobs.begin(), jobs.end(), [](const Job& j) { return j.skipped; });
   return {{"sweep_jobs", std::to_string(jobs.size())}, {"sweep_jobs_not_measured", std::to_string(skipped)}};

@@ -36,9 +36,10 @@ struct SweepSettings {
 void write_rest_predictions(const std::string& dir, const RestSpectrum& rest, const SweepSettings& sweep, double m);
 
 /// predicted.dat, measured.dat and implicit_euler.txt: predictions at the rest state and at the sagged
-/// equilibrium, and the measured bracket of h_max, for every K, D and method of the sweep. Returns summary entries.
+/// equilibrium, and the measured bracket of h_max, for every K, D and method of the sweep; hmax_table.md, the
+/// book's table of them, measured by `command`. Returns summary entries.
 std::vector<std::pair<std::string, std::string>> hmax_sweep(const std::string& dir, const cloth::SceneParams& scene,
                                                             const RestSpectrum& rest, Equilibria& equilibria,
-                                                            const SweepSettings& sweep);
+                                                            const SweepSettings& sweep, const std::string& command);
 
 }  // namespace ch07

@@ -9,10 +9,13 @@
 #include "base/input_error.hpp"
 #include "model/report_cases.hpp"
 #include "program/command_line.hpp"
+#include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
 
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -24,9 +27,11 @@ namespace {
 // The files the program writes into --out.
 std::vector<std::string> output_names() {
   std::vector<std::string> names = {"regions.dat", "predicted_rest.dat", "predicted.dat", "measured.dat",
-                                    "implicit_euler.txt", "summary.txt"};
+                                    "implicit_euler.txt", "summary.txt", "spectra.txt", "grid_summary.md",
+                                    "damped_reach.md", "hmax_table.md"};
   for (const cloth::ReportCase& c : cloth::report_cases)
     for (const char* state : {"rest", "sagged"}) names.push_back(std::string("spectrum_") + state + "_" + c.name() + ".dat");
+  names.push_back("run_time.md");  // written last: the whole run's time
   return names;
 }
 
@@ -57,9 +62,23 @@ SweepSettings sweep_settings(bool full, SweepSettings sweep, double T) {
   return sweep;
 }
 
+// run_time.md: how long the run took, from the start of main(), in wall-clock time and in processor time summed
+// over its threads, with the command that measured it.
+void write_run_time(const std::string& dir, const std::string& command, std::chrono::steady_clock::time_point started,
+                    std::clock_t cpu_started, int threads) {
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const double cpu = static_cast<double>(std::clock() - cpu_started) / CLOCKS_PER_SEC;
+  cloth::write_text_fragment(dir + "/run_time.md",
+                             "`" + command + "` took " + cloth::format_fixed(wall, 1) + " s of wall-clock time and " +
+                                 cloth::format_fixed(cpu, 1) + " s of processor time on " + std::to_string(threads) +
+                                 " threads.\n\n" + cloth::measured_by_line(command));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  const auto started = std::chrono::steady_clock::now();
+  const std::clock_t cpu_started = std::clock();
   cloth::CommandLine cli("ch07_stability",
                          "Chapter 7: stability regions from the Butcher tableaus, the cloth's spectrum over them, "
                          "predicted\nand measured largest stable steps h_max over K in [10, 1e5] and D in {0, 20}.");
@@ -96,8 +115,10 @@ int main(int argc, char** argv) {
       for (const auto& entry : report_spectra(dir, opt.scene, rest, equilibria, opt.run.dt, full, sweep.threads))
         summary.push_back(entry);
       write_rest_predictions(dir, rest, sweep, opt.scene.mass);            // 3. h_max predicted and measured
-      for (const auto& entry : hmax_sweep(dir, opt.scene, rest, equilibria, sweep)) summary.push_back(entry);
+      const std::string command = cloth::reader_command(argc, argv);
+      for (const auto& entry : hmax_sweep(dir, opt.scene, rest, equilibria, sweep, command)) summary.push_back(entry);
       cloth::write_key_values(dir + "/summary.txt", summary);
+      write_run_time(dir, command, started, cpu_started, sweep.threads);
     } catch (const NoEquilibrium& e) {
       std::fprintf(stderr, "%s: %s\n", cli.program().c_str(), e.what());
       return 3;

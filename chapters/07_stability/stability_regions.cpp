@@ -12,6 +12,33 @@
 
 namespace ch07 {
 
+std::string wrapped(const std::string& line, std::size_t width) {
+  std::string out, current;
+  std::size_t start = 0;
+  while (start <= line.size()) {
+    std::size_t end = line.find(' ', start);
+    if (end == std::string::npos) end = line.size();
+    const std::string word = line.substr(start, end - start);
+    if (!current.empty() && current.size() + 1 + word.size() > width) {
+      out += current + "\n";
+      current = "    " + word;
+    } else {
+      current += (current.empty() ? "" : " ") + word;
+    }
+    start = end + 1;
+  }
+  return out + current + "\n";
+}
+
+std::string method_label(const std::string& method) {
+  if (method == "explicit_euler") return "explicit Euler";
+  if (method == "symplectic_euler") return "symplectic Euler";
+  if (method == "implicit_euler") return "implicit Euler";
+  if (method == "heun") return "Heun";
+  if (method == "rk4") return "RK4";
+  return method;
+}
+
 StabilityModel stability_model(const std::string& method) {
   const cloth::Method& row = cloth::find_method(method);
   StabilityModel model{method, StabilityModel::Kind::polynomial, {}, nullptr};

@@ -35,6 +35,14 @@ StabilityModel stability_model(const std::string& method);
 /// The largest factor by which one step of length h multiplies a mode (see the .cpp).
 double growth_factor(const StabilityModel& model, double h, const std::vector<Mode>& modes);
 
+/// How the book's prose and tables name a method: "explicit Euler", "RK4"; a method without such a name keeps its
+/// registry name.
+std::string method_label(const std::string& method);
+
+/// `line` (no newline) broken at spaces into lines of at most `width` characters, the later ones indented by four
+/// spaces, each ending with a newline: a transcript the book shows whole.
+std::string wrapped(const std::string& line, std::size_t width = 100);
+
 /// The methods whose regions are drawn: every explicit Runge-Kutta method, implicit Euler and symplectic Euler,
 /// then the other implicit Runge-Kutta methods with a tableau (Chapter 9).
 std::vector<std::string> region_methods();

@@ -68,7 +68,8 @@ struct Equilibrium {
 /// Finds it by pseudo-time stepping: from the rest state, repeated implicit Euler steps of length tau from rest
 /// (velocity reset each step), (M - tau^2 df/dx) dx = tau^2 f, which is Newton's method regularised by M / tau^2.
 /// tau doubles while the energy falls and shrinks when it would rise, so the iteration turns into Newton's method
-/// near the minimum. Converged when |f|_inf <= tolerance m g, or when it is at the rounding level of the spring
+/// near the minimum; where the exact Hessian is indefinite (a stiff sheet buckling), the definite step is taken and
+/// doubled while the energy keeps falling. Converged when |f|_inf <= tolerance m g, or when it is at the rounding level of the spring
 /// forces, 64 eps K 2d (the larger K of the families), which a very light cloth's weight may be below.
 Equilibrium static_equilibrium(ForceField& field, double tolerance = 1e-9, int max_iterations = 300);
 
