@@ -28,11 +28,16 @@ namespace {
 // The chapter's two methods, registry names.
 const std::vector<std::string> chapter_methods = {"explicit_euler", "symplectic_euler"};
 
+/// One undamped spring's energy under explicit and symplectic Euler, after every step.
+struct SpringEnergies {
+  double omega = 0, h = 0, E0 = 0;
+  std::vector<double> explicit_euler, symplectic_euler;  ///< E_n for n = 1, 2, ... (fewer when interrupted)
+};
+
 // [single_spring_measurement]
-// Runs the single spring of single_spring.hpp with explicit and symplectic Euler and writes single_spring.dat:
-// t, explicit Euler's energy, the prediction E0 (1 + (h omega)^2)^n, symplectic Euler's energy.
-// Returns the measured per-step factor of explicit Euler, (E_n / E_0)^(1/n).
-double measure_single_spring(const SceneParams& params, const RunSettings& run, const std::string& dir) {
+// Runs the single spring of single_spring.hpp with explicit and symplectic Euler from the same stretched state and
+// records both energies after every step; explicit Euler's should be E0 (1 + (h omega)^2)^n exactly.
+SpringEnergies single_spring_energies(const SceneParams& params, const RunSettings& run) {
   const Scene scene(params);
   ForceField field(scene);
   auto euler = make_stepper("explicit_euler", field);
@@ -43,36 +48,49 @@ double measure_single_spring(const SceneParams& params, const RunSettings& run, 
   Vector xe, ve, xs, vs;
   single_spring_initial_state(scene, s0, xe, ve);
   single_spring_initial_state(scene, s0, xs, vs);
-  const double omega = std::sqrt(params.stiffness / params.mass);
-  const double h = run.dt;
-  const double predicted = 1 + (h * omega) * (h * omega);
-  const double E0 = field.energy(xe, ve).total();
-  const auto steps = static_cast<long long>(std::llround(run.t_end / h));
+  SpringEnergies e;
+  e.omega = std::sqrt(params.stiffness / params.mass);
+  e.h = run.dt;
+  e.E0 = field.energy(xe, ve).total();
+  const auto steps = static_cast<std::size_t>(std::llround(run.t_end / run.dt));
+  e.explicit_euler.reserve(steps);
+  e.symplectic_euler.reserve(steps);
+  for (std::size_t n = 1; n <= steps && interrupt_signal() == 0; ++n) {
+    euler->step(e.h, xe, ve);
+    symplectic->step(e.h, xs, vs);
+    e.explicit_euler.push_back(field.energy(xe, ve).total());
+    e.symplectic_euler.push_back(field.energy(xs, vs).total());
+  }
+  return e;
+}
+// [single_spring_measurement]
+
+// Writes single_spring.dat (t, explicit Euler's energy, the prediction E0 (1 + (h omega)^2)^n, symplectic Euler's
+// energy) and prints the measured per-step factor of explicit Euler, (E_n / E_0)^(1/n), which it returns.
+double measure_single_spring(const SceneParams& params, const RunSettings& run, const std::string& dir) {
+  const SpringEnergies e = single_spring_energies(params, run);
+  const double predicted = 1 + (e.h * e.omega) * (e.h * e.omega);
   OutputFile file(dir + "/single_spring.dat");
   std::FILE* out = file.get();
   std::fprintf(out, "# single undamped spring, K = %g N/m, m = %g kg, omega = %.10g rad/s, h = %g s, h omega = %.6g\n",
-               params.stiffness, params.mass, omega, h, h * omega);
+               params.stiffness, params.mass, e.omega, e.h, e.h * e.omega);
   std::fprintf(out, "# t E_explicit_euler E0*(1+(h omega)^2)^n E_symplectic_euler\n");
-  std::fprintf(out, "%.10g %.17g %.17g %.17g\n", 0.0, E0, E0, E0);
-  double E = E0;
-  long long n = 1;
-  for (; n <= steps && interrupt_signal() == 0; ++n) {
-    euler->step(h, xe, ve);
-    symplectic->step(h, xs, vs);
-    E = field.energy(xe, ve).total();
-    std::fprintf(out, "%.10g %.17g %.17g %.17g\n", static_cast<double>(n) * h, E,
-                 E0 * std::pow(predicted, static_cast<double>(n)), field.energy(xs, vs).total());
+  std::fprintf(out, "%.10g %.17g %.17g %.17g\n", 0.0, e.E0, e.E0, e.E0);
+  for (std::size_t k = 0; k < e.explicit_euler.size(); ++k) {
+    const auto n = static_cast<double>(k + 1);
+    std::fprintf(out, "%.10g %.17g %.17g %.17g\n", n * e.h, e.explicit_euler[k], e.E0 * std::pow(predicted, n),
+                 e.symplectic_euler[k]);
   }
   file.commit();
   throw_if_interrupted();  // single_spring.dat is whole up to the last step taken
-  const double measured = std::pow(E / E0, 1.0 / static_cast<double>(steps));
+  const auto steps = static_cast<long long>(e.explicit_euler.size());
+  const double measured = std::pow(e.explicit_euler.back() / e.E0, 1.0 / static_cast<double>(steps));
   std::printf("single spring: K = %g N/m, m = %g kg, omega = %.6g rad/s, h = %g s, h omega = %.6g\n", params.stiffness,
-              params.mass, omega, h, h * omega);
+              params.mass, e.omega, e.h, e.h * e.omega);
   std::printf("  energy growth per explicit Euler step: predicted 1 + (h omega)^2 = %.15f, measured over %lld steps "
               "%.15f\n", predicted, steps, measured);
   return measured;
 }
-// [single_spring_measurement]
 
 // The report's three (K, D) (model/report_cases.hpp), run with both methods by --report-runs, each in its own
 // subfolder.
