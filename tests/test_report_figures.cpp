@@ -6,9 +6,9 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
-#include <regex>
 #include <sstream>
 
 using namespace cloth_test;
@@ -68,6 +68,26 @@ TEST_CASE("ch05_report_figures on an 8x8 cloth: full grid, unstretched start, en
   CHECK(fs::exists(cwd / "out" / "runs" / "implicit_euler_K50_D0" / "run.txt"));
 }
 
+namespace {
+
+/// The first word of `text` (a run of letters) that is how printf spells a non-finite number: "inf", "infinity"
+/// or "nan", in any case; empty when there is none.
+std::string not_finite_word(const std::string& text) {
+  std::string word;
+  for (std::size_t k = 0; k <= text.size(); ++k) {
+    const char c = k < text.size() ? text[k] : ' ';
+    if (std::isalpha(static_cast<unsigned char>(c)) != 0) {
+      word += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      continue;
+    }
+    if (word == "inf" || word == "infinity" || word == "nan") return word;
+    word.clear();
+  }
+  return "";
+}
+
+}  // namespace
+
 TEST_CASE("ch05_report_figures --v0 0: a cloth dropped from rest (E(0) = 0) has finite energy ratios, to W L") {
   const ProgramFolder folder;
   const fs::path out = folder.cwd() / "out";
@@ -77,7 +97,6 @@ TEST_CASE("ch05_report_figures --v0 0: a cloth dropped from rest (E(0) = 0) has 
   REQUIRE(run.status == 0);
   // What the reader reads, the console and the page's fragments, and the ratios the energy plot draws: no
   // infinity or NaN, as a ratio to E(0) = 0 would give.
-  const std::regex not_finite(R"((^|[^a-z])(inf|infinity|nan)([^a-z]|$))", std::regex::icase);
   std::vector<std::pair<std::string, std::string>> texts = {{"stdout", run.out}};
   for (const char* fragment : {"summary.md", "theory.md", "deformed_damping.md", "growth.md", "sweep.md",
                                "sweep_implicit.md", "series_rk4_K200_D20.dat", "series_explicit_euler_K50_D0.dat"})
@@ -85,7 +104,7 @@ TEST_CASE("ch05_report_figures --v0 0: a cloth dropped from rest (E(0) = 0) has 
   for (const auto& [name, text] : texts) {
     INFO(name);
     CHECK(!text.empty());
-    CHECK_FALSE(std::regex_search(text, not_finite));
+    CHECK(not_finite_word(text).empty());
   }
   // The reference is W L: 32 free particles of 1 kg at g = 9.81 m/s^2, side 5 x 0.1 m (a 6x6 grid, four corners
   // pinned), 156.96 J; the page's table names it.
