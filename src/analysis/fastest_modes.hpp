@@ -28,9 +28,10 @@ inline double fastest_rest_frequency(ForceField& field) {
 
 // [fastest_damping_rate]
 /// The fastest damping rate c_max at (x, v): the largest eigenvalue of -M^{-1} df/dv (the projected damper gives
-/// df/dv = -D sum u u^T over springs, symmetric negative semidefinite). A mode damped at rate c is a real
-/// eigenvalue -c of the ODE, and an explicit method is stable on it only while h c stays inside its stability
-/// interval on the negative real axis: 2 for explicit Euler, 2.785 for RK4.
+/// df/dv = -D sum u u^T over springs, symmetric negative semidefinite). A mode s'' = -omega^2 s - c s' damped at
+/// rate c > 2 omega has the real eigenvalues -c/2 +- sqrt(c^2/4 - omega^2), the fast one -c + omega^2/c + ...,
+/// which tends to -c as c/omega grows: h c measures it against an explicit method's stability interval on the
+/// negative real axis (2 for explicit Euler, 2.785 for RK4) with a margin of order (h omega)^2.
 inline double fastest_damping_rate(ForceField& field, const Vector& x, const Vector& v) {
   SparseMatrix dfdx = field.pattern(), dfdv = field.pattern();
   field.jacobians(x, v, dfdx, dfdv);
