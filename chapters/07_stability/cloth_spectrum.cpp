@@ -230,10 +230,17 @@ std::vector<std::pair<std::string, std::string>> report_spectra(const std::strin
   const auto damped = std::find_if(std::begin(cloth::report_cases), std::end(cloth::report_cases),
                                    [](const cloth::ReportCase& c) { return c.D > 0; });
   const CaseSpectra& d = cases[static_cast<std::size_t>(damped - std::begin(cloth::report_cases))];
-  const auto where = [&](const std::string& method) {
-    const Complex z(h * d.sagged_leftmost, 0);
-    const bool inside = growth_factor(stability_model(method), 1.0, {Mode{z, z}}) <= 1 + 1e-12;
-    return (inside ? "inside " : "outside ") + method_label(method) + "'s";
+  // Whether h lambda lies inside explicit Euler's and RK4's regions, said for the rest and the sagged state
+  // separately (the two can differ).
+  const auto where = [&](double leftmost) {
+    const Complex z(h * leftmost, 0);
+    std::string said;
+    for (const char* method : {"explicit_euler", "rk4"}) {
+      const bool inside = growth_factor(stability_model(method), 1.0, {Mode{z, z}}) <= 1 + 1e-12;
+      said += std::string(said.empty() ? "" : " and ") + (inside ? "inside " : "outside ") + method_label(method) + "'s" +
+              (said.empty() ? " region" : "");
+    }
+    return said;
   };
   std::string sags, largest;
   for (std::size_t k = 0; k < cases.size(); ++k) {
@@ -252,9 +259,10 @@ std::vector<std::pair<std::string, std::string>> report_spectra(const std::strin
   cloth::write_text_fragment(dir + "/damped_reach.md",
                              "At h = " + cloth::format_number(h) + " s the stiffest modes of the damped cloth (K = " +
                                  cloth::format_number(damped->K) + ", D = " + cloth::format_number(damped->D) +
-                                 ") lie at hλ = " + cloth::format_fixed(h * d.rest_leftmost, 2) + " at rest and " +
-                                 cloth::format_fixed(h * d.sagged_leftmost, 2) + " at the sagged state, " +
-                                 where("explicit_euler") + " region and " + where("rk4") + ".\n");
+                                 ") lie at hλ = " + cloth::format_fixed(h * d.rest_leftmost, 2) + " at rest (" +
+                                 where(d.rest_leftmost) + ") and at hλ = " +
+                                 cloth::format_fixed(h * d.sagged_leftmost, 2) + " at the sagged state (" +
+                                 where(d.sagged_leftmost) + ").\n");
   return summary;
 }
 
