@@ -5,6 +5,8 @@
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "base/text.hpp"
+#include "analysis/fastest_modes.hpp"
+#include "analysis/stability_function.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/implicit_step_control.hpp"
 #include "integrators/simulate.hpp"
@@ -250,6 +252,33 @@ void work_precision(const SceneParams& p, double T, const std::vector<double>& h
 }
 // [work_precision]
 
+// How stiff the stiff cloth is for the study's steps: its fastest mode at rest (where the damper's matrix is D/K
+// times the stiffness matrix, so that mode has the damping rate c = (D/K) omega_max^2), the size of h lambda over
+// the steps, and the largest step at which explicit RK4 is stable on that mode. Written to `path` as a sentence.
+void write_stiffness(const SceneParams& params, const std::vector<double>& hs, const std::string& path) {
+  const Scene scene(params);
+  ForceField field(scene);
+  const double omega = fastest_rest_frequency(field);
+  const double c = fastest_damping_rate(field, scene.initial_positions(), Vector::Zero(scene.dof_count()));
+  // The roots of lambda^2 + c lambda + omega^2 = 0: a conjugate pair when c < 2 omega, else two real ones.
+  const Complex root = std::sqrt(Complex(c * c / 4 - omega * omega, 0));
+  const Complex lambda = -c / 2 - root;
+  const ButcherTableau& rk4 = *find_method("rk4").tableau;
+  const double rk4_limit = stability_limit_along(
+      [&](double h) { return std::abs(stability_function(rk4, h * lambda)) <= 1 + 1e-12; }, 1.0);
+  const auto [h_min, h_max] = std::minmax_element(hs.begin(), hs.end());
+  write_text_fragment(
+      path, "At rest the fastest mode of (K, D) = (" + format_number(params.stiffness) + ", " +
+                format_number(params.damping) + ") has ω_max = " + format_number(omega, 4) +
+                " rad/s and the damping rate c = " + format_number(c, 4) + " 1/s" +
+                (c < 2 * omega ? ", less than 2ω_max: an underdamped oscillation, λ = " : ": overdamped, λ = ") +
+                format_number(lambda.real(), 4) + (c < 2 * omega ? " ± " + format_number(std::abs(lambda.imag()), 4) + "i" : "") +
+                " 1/s, |λ| = " + format_number(std::abs(lambda), 4) + " 1/s. Over the study's steps h|λ| runs from " +
+                format_number(*h_min * std::abs(lambda), 2) + " (h = " + format_number(*h_min) + " s) to " +
+                format_number(*h_max * std::abs(lambda), 2) + " (h = " + format_number(*h_max) +
+                " s), and explicit RK4 is stable on this mode for every h up to " + format_number(rk4_limit, 3) + " s.\n");
+}
+
 // The chapter's studies: energy on the undamped cloth; observed orders on (200, 20) over T = 0.4 s; work against
 // precision on the stiff cloth (5000, 20). --quick keeps the plots target fast (fewer steps, one timing).
 void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, const std::string& program,
@@ -257,7 +286,7 @@ void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, c
   const std::string dir = opt.run.out_dir;
   // Every output of the studies, checked before the first run starts (a folder in the way is bad input).
   std::vector<std::string> outputs = {"energy_summary.dat", "orders.dat", "work_precision.dat", "methods.md",
-                                      "energy_summary.md",  "orders.md",  "work_precision.md"};
+                                      "energy_summary.md",  "orders.md",  "work_precision.md", "stiffness.md"};
   for (const MethodChoice& m : study_methods(newton))
     for (const std::string& name : run_output_names()) outputs.push_back("energy_" + m.argument + "/" + name);
   prepare_outputs(dir, outputs);
@@ -296,6 +325,7 @@ void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, c
 
   SceneParams stiff = report;
   stiff.stiffness = 5000;
+  write_stiffness(stiff, hs, dir + "/stiffness.md");
   // The figure shows the L-stable methods and BDF2; the others fail at the large steps (see the page).
   std::vector<StudyRun> stiff_runs;
   work_precision(stiff, T, hs, reference_positions(stiff, T, 2e-5), newton,
