@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
     MarkdownTable programs({"program", "wall [s]", "CPU [s]", "ratio"}, "lrrr");
     programs.add_row(row("written with Boost.Odeint alone (process)", plain_process, plain_process));
     programs.add_row(row("ch03_runge_kutta with its outputs (process)", ch03_process, plain_process));
-    MarkdownTable integrators({"integrator on cloth::ForceField", "wall [s]", "CPU [s]", "ratio"}, "lrrr");
+    MarkdownTable integrators({"integrator, on the project's forces", "wall [s]", "CPU [s]", "ratio"}, "lrrr");
     integrators.add_row(row("odeint runge_kutta4", odeint_core, odeint_core));
     integrators.add_row(row("generic Butcher-tableau engine, rk4", engine, odeint_core));
 

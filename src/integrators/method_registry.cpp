@@ -152,7 +152,7 @@ Method tsitouras5() {
                       -0.5823571654525552,  0.45808210592918686,   -1.0 / 66};
   Method m = embedded_pair("tsit5", "Tsitouras 5(4)",
                            "first same as last, small fifth-order error "
-                           "(\\ref ref_tsitouras2011 \"Tsitouras 2011\")",
+                           "(Tsitouras 2011)",
                            5, 4,
                            {{},
                             {0.161},
@@ -207,13 +207,13 @@ const std::vector<Method>& methods() {
       // Bogacki & Shampine (1989), "A 3(2) pair of Runge-Kutta formulas", Appl. Math. Lett. 2(4): first same as
       // last, so three evaluations per step; its b has three nonzero weights, so R(z) is Kutta's.
       embedded_pair("bs32", "Bogacki-Shampine 3(2)",
-                    "first same as last (\\ref ref_bogacki1989 \"Bogacki & Shampine 1989\")", 3, 2,
+                    "first same as last (Bogacki & Shampine 1989)", 3, 2,
                     {{}, {1.0 / 2}, {0, 3.0 / 4}, {2.0 / 9, 1.0 / 3, 4.0 / 9}},
                     {2.0 / 9, 1.0 / 3, 4.0 / 9, 0}, {7.0 / 24, 1.0 / 4, 1.0 / 3, 1.0 / 8}, taylor_of_exp<3>),
       // Fehlberg (1969), NASA TR R-315, "Low-order classical Runge-Kutta formulas with stepsize control", Table
       // III: the pair RKF4(5), which advances with its fourth-order row as Fehlberg intended.
       embedded_pair("rkf45", "Fehlberg 4(5)",
-                    "advances with its fourth-order row (\\ref ref_fehlberg1969 \"Fehlberg 1969\")", 4, 5,
+                    "advances with its fourth-order row (Fehlberg 1969)", 4, 5,
                     {{},
                      {1.0 / 4},
                      {3.0 / 32, 9.0 / 32},
@@ -225,7 +225,7 @@ const std::vector<Method>& methods() {
       // Cash & Karp (1990), "A variable order Runge-Kutta method for initial value problems with rapidly varying
       // right-hand sides", ACM TOMS 16(3): advanced with the fifth-order row, as Numerical Recipes and odeint do.
       embedded_pair("cash_karp", "Cash-Karp 5(4)",
-                    "advances with its fifth-order row (\\ref ref_cash1990 \"Cash & Karp 1990\")", 5, 4,
+                    "advances with its fifth-order row (Cash & Karp 1990)", 5, 4,
                     {{},
                      {1.0 / 5},
                      {3.0 / 40, 9.0 / 40},
@@ -237,7 +237,7 @@ const std::vector<Method>& methods() {
       // Dormand & Prince (1980), "A family of embedded Runge-Kutta formulae", J. Comput. Appl. Math. 6(1), the pair
       // RK5(4)7M: seven stages of which the last is the next step's first (FSAL), so six evaluations per step.
       embedded_pair("dopri5", "Dormand-Prince 5(4)",
-                    "first same as last (\\ref ref_dormand1980 \"Dormand & Prince 1980\")", 5, 4,
+                    "first same as last (Dormand & Prince 1980)", 5, 4,
                     {{},
                      {1.0 / 5},
                      {3.0 / 40, 9.0 / 40},
@@ -247,7 +247,8 @@ const std::vector<Method>& methods() {
                      {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84}},
                     {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84, 0},
                     {5179.0 / 57600, 0, 7571.0 / 16695, 393.0 / 640, -92097.0 / 339200, 187.0 / 2100, 1.0 / 40}),
-      // Tsitouras (2011): 5(4) and first same as last, with its coefficients written out in tsitouras5() above.
+      // Tsitouras (2011): 5(4) and first same as last; its coefficients, given to 16 digits, are written out in
+      // tsitouras5(), a function of their own.
       tsitouras5(),
       // [embedded_pairs]
       // Implicit Euler (Chapter 4): the one-stage tableau A = [1], b = [1]. Its stepper is Chapter 4's Newton
@@ -257,14 +258,14 @@ const std::vector<Method>& methods() {
        builtin_implicit_tableau("implicit_euler").method, implicit_euler_stability_function, make_implicit_euler},
       // [implicit_rows]
       // Chapter 9's diagonally implicit methods, each stage an implicit Euler equation for StageNewton.
-      // The description is a line of Chapter 9's table: \\ref links a citation to the references page.
+      // The description is a line of Chapter 9's table, where its citation becomes a link (method_tables.cpp).
       diagonally_implicit("implicit_midpoint", "implicit midpoint", "the one-stage Gauss method", pade11),
-      diagonally_implicit("trapezoid", "trapezoidal rule", "\\ref ref_crank1947 \"Crank & Nicolson 1947\"", pade11),
-      diagonally_implicit("sdirk2", "SDIRK2", "γ = 1 - √2/2 (\\ref ref_alexander1977 \"Alexander 1977\")",
+      diagonally_implicit("trapezoid", "trapezoidal rule", "Crank & Nicolson 1947", pade11),
+      diagonally_implicit("sdirk2", "SDIRK2", "γ = 1 - √2/2 (Alexander 1977)",
                           sdirk2_stability_function),
-      diagonally_implicit("sdirk3", "SDIRK3", "γ = 0.4358665215 (\\ref ref_alexander1977 \"Alexander 1977\")",
+      diagonally_implicit("sdirk3", "SDIRK3", "γ = 0.4358665215 (Alexander 1977)",
                           nullptr),
-      diagonally_implicit("trbdf2", "TR-BDF2", "step control (\\ref ref_hosea1996 \"Hosea & Shampine 1996\")",
+      diagonally_implicit("trbdf2", "TR-BDF2", "step control (Hosea & Shampine 1996)",
                           nullptr),
       // [implicit_rows]
       // Local/global (Chapter 10; Liu, Bargteil, O'Brien & Kavan 2013): implicit Euler's step again, its equations

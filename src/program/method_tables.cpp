@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace cloth {
 
@@ -34,13 +35,30 @@ std::string stability_cell(const TableauProperties& p) {
   return cell;
 }
 
+// The registry's descriptions cite their sources as plain text, which --help prints and the listings show as it
+// is; in the book's tables each citation becomes a link to its entry on the references page.
+std::string linked(std::string text) {
+  static const std::pair<const char*, const char*> citations[] = {
+      {"Alexander 1977", "ref_alexander1977"},         {"Bogacki & Shampine 1989", "ref_bogacki1989"},
+      {"Cash & Karp 1990", "ref_cash1990"},            {"Crank & Nicolson 1947", "ref_crank1947"},
+      {"Dormand & Prince 1980", "ref_dormand1980"},    {"Fehlberg 1969", "ref_fehlberg1969"},
+      {"Hosea & Shampine 1996", "ref_hosea1996"},      {"Tsitouras 2011", "ref_tsitouras2011"}};
+  for (const auto& [citation, anchor] : citations) {
+    const std::size_t at = text.find(citation);
+    if (at != std::string::npos)
+      text.replace(at, std::char_traits<char>::length(citation),
+                   std::string("\\ref ") + anchor + " \"" + citation + "\"");
+  }
+  return text;
+}
+
 }  // namespace
 
 MarkdownTable explicit_method_table() {
   MarkdownTable table({"name", "stages", "order", "description"}, "lrrl");
   for (const Method* m : methods_of(MethodFamily::explicit_runge_kutta)) {
     const TableauProperties p = tableau_properties(*m->tableau);
-    table.add_row({code(m->name), std::to_string(p.stages), order_cell(p), m->description});
+    table.add_row({code(m->name), std::to_string(p.stages), order_cell(p), linked(m->description)});
   }
   return table;
 }
@@ -49,13 +67,13 @@ MarkdownTable implicit_method_table() {
   MarkdownTable table({"name", "stages", "order", "stiffly accurate", "R(∞)", "stability", "description"}, "lrrlrll");
   for (const Method* m : newton_methods()) {
     if (!m->tableau) {  // a multistep row: no tableau to compute from
-      table.add_row({code(m->name), "multistep", std::to_string(m->order), "", "", "", m->description});
+      table.add_row({code(m->name), "multistep", std::to_string(m->order), "", "", "", linked(m->description)});
       continue;
     }
     const TableauProperties p = tableau_properties(*m->tableau);
     const std::string stages = std::to_string(p.stages) + (p.explicit_first_stage ? " (explicit first)" : "");
     table.add_row({code(m->name), stages, order_cell(p), p.stiffly_accurate ? "yes" : "no", limit_cell(p.r_infinity),
-                   stability_cell(p), m->description});
+                   stability_cell(p), linked(m->description)});
   }
   return table;
 }
