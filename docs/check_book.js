@@ -1,7 +1,7 @@
 // The book's browser check, run by docs/check_book.sh inside headless Chromium: loads every page of the book in
 // an iframe as wide as a browser window, lets MathJax finish, and lists what a reader would see broken: formula
-// errors, raw formula commands, missing images, links to missing files or anchors, and figures, tables or formulas
-// wider than the text column. The verdict is written into <pre id="verdict">, one problem per line.
+// errors, raw formula commands and other raw markup (an escaped '|', '--' printed as a dash, \ref), missing
+// images, links to missing files or anchors, and figures, tables or formulas wider than the text column. The verdict is written into <pre id="verdict">, one problem per line.
 //
 // It reads window.CHECK_BOOK = {root: "file:///.../html/", pages: ["ch01.html", ...], widths: [1280, 800],
 // concurrency: 3}, written by check_book.sh into pages.js. Chromium must run with --allow-file-access-from-files,
@@ -67,6 +67,29 @@
       const at = node.data.search(/\\f[$[\]{}]/);
       if (at >= 0) report(page, "raw formula command in the text: '" +
                                 shorten(node.data.slice(Math.max(0, at - 30), at + 50), 80) + "'");
+    }
+  }
+
+  // Markup a reader should never see, in any text of the page, listings included (a formula's own TeX, inside
+  // MathJax's scripts and output, is left alone):
+  // - a backslash before `|`: Markdown's escape of a table's column bar, kept literally inside a code span;
+  // - an en dash (U+2013) right before a flag name: Doxygen's rendering of `--` outside a code span;
+  // - a raw \ref: a Doxygen command inside a string of a listing or where Doxygen does not read commands.
+  const markupPatterns = [
+    [/\\\|/, "a backslash before '|' (an escaped table bar shown literally)"],
+    [/(^|[\s(\[`'"])\u2013[a-z][a-z0-9-]*/, "an en dash before a flag name ('--' printed as a dash)"],
+    [/\\ref\b/, "raw \\ref markup"],
+  ];
+  function checkRawMarkup(page, doc) {
+    const walker = doc.createTreeWalker(doc.body, NodeFilter.SHOW_TEXT);
+    for (let node = walker.nextNode(); node; node = walker.nextNode()) {
+      if (node.parentElement.closest("script, style, .MathJax, .MathJax_Display, .MathJax_Preview")) continue;
+      for (const [pattern, what] of markupPatterns) {
+        const match = pattern.exec(node.data);
+        if (!match) continue;
+        const at = match.index + (match[1] ? match[1].length : 0);
+        report(page, what + ": '" + shorten(node.data.slice(Math.max(0, at - 30), at + 40), 80) + "'");
+      }
     }
   }
 
@@ -166,6 +189,7 @@
       }
     }
     checkRawCommands(page, doc);
+    checkRawMarkup(page, doc);
     await checkImages(page, doc);
     collectLinks(page, doc);
     for (const width of config.widths) {
