@@ -30,9 +30,10 @@ set autoscale
 set output plots.'/ch08_jump_response.png'
 set terminal pngcairo size 1000,620 enhanced font 'Sans,10'
 unset ylabel
-set multiplot layout 2,3 title 'A jump J in the acceleration at t_0 + {/Symbol q} h: velocity error of the step and its estimate, per unit J h'
+set multiplot layout 2,3 title 'A jump J in the acceleration at t_0 + {/Symbol q} h: velocity error of the step and its estimate, per unit J h (each panel its own scale)'
 set xrange [0:1]
-set yrange [-0.6:0.6]
+# Each pair's own vertical range: a common one either cuts the largest errors off or flattens the smallest.
+set autoscale y
 set key top right font ',8'
 do for [i=1:6] {
   set title word(pairs, i) noenhanced

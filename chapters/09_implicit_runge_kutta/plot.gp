@@ -18,7 +18,7 @@ plot data.'/energy_implicit_euler/energy.dat'    using 1:5 with lines lw 2 lc rg
      data.'/energy_implicit_midpoint/energy.dat' using 1:5 with lines lw 2 dt 3 lc rgb "#1f77b4" title "implicit midpoint"
 
 set output plots.'/ch09_orders.png'
-set title "Error at T = 0.4 s on (K, D) = (200, 20) against RK4 at h = 10^{-5}"
+set title "Error at T = 0.4 s on (K, D) = (200, 20) against RK4 at h = 2×10^{-5}"
 set xlabel "step h [s]"
 set ylabel "max |x - x_{ref}| [m]"
 set logscale xy
