@@ -94,14 +94,22 @@ ch06::Seconds time_process(const std::vector<std::string>& args) {
 }
 
 // The fastest of `runs` (wall and CPU separately): on a shared machine the least disturbed run.
-ch06::Seconds best_of(int runs, const std::function<ch06::Seconds()>& once) {
+// The fastest of `runs` timings, and the slowest CPU time among them: the spread says how far one timing on a
+// shared computer can be from the best.
+struct Timings {
   ch06::Seconds best{INFINITY, INFINITY};
-  for (int k = 0; k < runs; ++k) {
-    const ch06::Seconds s = once();
+  double slowest_cpu = 0;
+  void add(const ch06::Seconds& s) {
     best.wall = std::min(best.wall, s.wall);
     best.cpu = std::min(best.cpu, s.cpu);
+    slowest_cpu = std::max(slowest_cpu, s.cpu);
   }
-  return best;
+};
+
+Timings best_of(int runs, const std::function<ch06::Seconds()>& once) {
+  Timings t;
+  for (int k = 0; k < runs; ++k) t.add(once());
+  return t;
 }
 
 ch06::Seconds time_in_process(const std::function<void()>& body) {
@@ -159,12 +167,12 @@ int main(int argc, char** argv) {
     plain_args.insert(plain_args.end(), scene_args.begin(), scene_args.end());
     ch03_args.insert(ch03_args.end(), scene_args.begin(), scene_args.end());
     ch03_args.insert(ch03_args.end(), {"--out", dir + "/ch03_run"});
-    ch06::Seconds plain_process{INFINITY, INFINITY}, ch03_process{INFINITY, INFINITY};
+    Timings plain_timings, ch03_timings;
     for (int k = 0; k < runs; ++k) {  // alternated, so that a busy spell of the machine hits both
-      const ch06::Seconds a = time_process(plain_args), b = time_process(ch03_args);
-      plain_process = {std::min(plain_process.wall, a.wall), std::min(plain_process.cpu, a.cpu)};
-      ch03_process = {std::min(ch03_process.wall, b.wall), std::min(ch03_process.cpu, b.cpu)};
+      plain_timings.add(time_process(plain_args));
+      ch03_timings.add(time_process(ch03_args));
     }
+    const ch06::Seconds plain_process = plain_timings.best, ch03_process = ch03_timings.best;
 
     // 2. The integrators alone on the core's forces, and the reader's program in this process for reference.
     const Scene scene(s);
@@ -172,22 +180,29 @@ int main(int argc, char** argv) {
     Vector x_odeint, x_core;
     ch06::PlainOdeintCloth::State y_plain;
     const ch06::PlainOdeintCloth plain = plain_cloth(s);
-    const ch06::Seconds odeint_core =
-        best_of(runs, [&] { return time_in_process([&] { x_odeint = odeint_on_core_forces(field, h, T); }); });
-    const ch06::Seconds engine = best_of(runs, [&] { return time_in_process([&] { x_core = core_engine(field, h, T); }); });
-    const ch06::Seconds plain_in_process = best_of(runs, [&] { return time_in_process([&] { y_plain = plain.run(h, T); }); });
+    Timings odeint_timings, engine_timings;
+    for (int k = 0; k < runs; ++k) {  // alternated as well
+      odeint_timings.add(time_in_process([&] { x_odeint = odeint_on_core_forces(field, h, T); }));
+      engine_timings.add(time_in_process([&] { x_core = core_engine(field, h, T); }));
+    }
+    const ch06::Seconds odeint_core = odeint_timings.best, engine = engine_timings.best;
+    const ch06::Seconds plain_in_process =
+        best_of(runs, [&] { return time_in_process([&] { y_plain = plain.run(h, T); }); }).best;
 
     // Seconds of wall and CPU time, and the CPU time as a ratio to the first row of each table.
-    const auto row = [](const char* what, const ch06::Seconds& t, const ch06::Seconds& ref) {
-      return std::vector<std::string>{what, format_fixed(t.wall, 3), format_fixed(t.cpu, 3),
-                                      format_fixed(t.cpu / ref.cpu, 2)};
+    // One configuration on each side, timed the same number of times, alternately.
+    const auto row = [](const char* what, const Timings& t, const Timings& ref) {
+      return std::vector<std::string>{what, format_fixed(t.best.wall, 3), format_fixed(t.best.cpu, 3),
+                                      format_fixed(t.slowest_cpu, 3), format_fixed(t.best.cpu / ref.best.cpu, 2)};
     };
-    MarkdownTable programs({"program", "wall [s]", "CPU [s]", "ratio"}, "lrrr");
-    programs.add_row(row("written with Boost.Odeint alone (process)", plain_process, plain_process));
-    programs.add_row(row("ch03_runge_kutta with its outputs (process)", ch03_process, plain_process));
-    MarkdownTable integrators({"integrator, on the project's forces", "wall [s]", "CPU [s]", "ratio"}, "lrrr");
-    integrators.add_row(row("odeint runge_kutta4", odeint_core, odeint_core));
-    integrators.add_row(row("generic Butcher-tableau engine, rk4", engine, odeint_core));
+    MarkdownTable programs({"program", "wall [s]", "CPU, fastest [s]", "CPU, slowest [s]", "ratio"}, "lrrrr");
+    programs.add_row(row("written with Boost.Odeint alone (process)", plain_timings, plain_timings));
+    programs.add_row(row("ch03_runge_kutta with its outputs (process)", ch03_timings, plain_timings));
+    MarkdownTable integrators({"integrator, on the project's forces", "wall [s]", "CPU, fastest [s]", "CPU, slowest [s]",
+                               "ratio"},
+                              "lrrrr");
+    integrators.add_row(row("odeint runge_kutta4", odeint_timings, odeint_timings));
+    integrators.add_row(row("generic Butcher-tableau engine, rk4", engine_timings, odeint_timings));
 
     // 3. What a program costs beyond its integration: one step of h = 0.01 s of each single-run program on the
     //    same scene, as a whole process (start-up, the scene, the fastest rates for run.txt, every output).
@@ -199,12 +214,13 @@ int main(int argc, char** argv) {
       args.insert(args.end(), scene_args.begin(), scene_args.end() - 4);  // the scene, without --dt and --t-end
       if (std::string(program) != "ch08_adaptive_step") args.insert(args.end(), {"--dt", "0.01"});  // ch08 adapts
       args.insert(args.end(), {"--t-end", "0.01", "--out", dir + "/one_step_" + program});
-      const ch06::Seconds t = best_of(std::max(runs, 5), [&] { return time_process(args); });
+      const ch06::Seconds t = best_of(std::max(runs, 5), [&] { return time_process(args); }).best;
       one_step.add_row({std::string("`") + program + "`", format_fixed(1e3 * t.wall, 1), format_fixed(1e3 * t.cpu, 1)});
     }
     const std::string table = "RK4, h = " + H + " s over T = " + TT + " s on the " + M + " x " + N +
-                              " cloth with K = " + K + " N/m, D = " + D + " N s/m; the fastest of " +
-                              std::to_string(runs) + " runs; ratio of CPU times.\n\n" + programs.markdown() + "\n" +
+                              " cloth with K = " + K + " N/m, D = " + D + " N s/m; each side one configuration, timed " +
+                              std::to_string(runs) + " times alternately with the other: the fastest and the slowest " +
+                              "CPU time, and the ratio of the fastest.\n\n" + programs.markdown() + "\n" +
                               integrators.markdown() + "\nOn the same cloth, the fastest of " +
                               std::to_string(std::max(runs, 5)) + " runs:\n\n" + one_step.markdown();
     write_text_fragment(dir + "/odeint_comparison.md", table + "\n" + measured_by_line(reader_command(argc, argv)));
