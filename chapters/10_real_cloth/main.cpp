@@ -35,8 +35,8 @@ struct Settings {
 
 MarkdownTable preset_table() {
   const FabricMeasurements cotton;
-  MarkdownTable t({"particles per side", "spacing d [m]", "particle mass m = rho_A d^2 [kg]",
-                   "k structural = k shear [N/m]", "k flexion [N/m]", "omega_max [rad/s]", "RK4's stable step [s]"},
+  MarkdownTable t({"particles per side", "spacing d [m]", "particle mass m = ρ_A d² [kg]",
+                   "k_s = k_sh [N/m]", "k_f [N/m]", "ω_max [rad/s]", "RK4's stable step [s]"},
                   "rrrrrrr");
   for (int n : {20, 39, 77, 153}) {
     const SceneParams p = fabric_scene(cotton, {0.95, n, 20.0});
@@ -162,7 +162,7 @@ double measured_stable_step(const Scene& scene, const std::string& method, doubl
 double stability_reach(const std::string& method) { return method == "rk4" ? 2 * std::sqrt(2.0) : 2.0; }
 
 void stable_steps(const Settings& s, const std::vector<double>& stiffnesses) {
-  MarkdownTable table({"grid", "K [N/m]", "omega_max, lattice [rad/s]", "omega_max, this cloth [rad/s]",
+  MarkdownTable table({"grid", "K [N/m]", "ω_max, lattice [rad/s]", "ω_max, this cloth [rad/s]",
                        "symplectic Euler: predicted / measured h [s]", "RK4: predicted / measured h [s]"},
                       "lrrrrr");
   double worst[2] = {0, 0};  // the largest relative difference of prediction and measurement, per method
