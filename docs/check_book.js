@@ -59,11 +59,12 @@
       report(page, "MathJax failed: " + shorten(error.textContent, 80));
   }
 
-  // Doxygen leaves a formula command as text where it ignores it (inside double quotes, for one).
+  // Doxygen leaves a formula command as text where it ignores it (inside double quotes, for one, or in a comment
+  // of a listing): anywhere outside the formulas MathJax typeset.
   function checkRawCommands(page, doc) {
     const walker = doc.createTreeWalker(doc.body, NodeFilter.SHOW_TEXT);
     for (let node = walker.nextNode(); node; node = walker.nextNode()) {
-      if (node.parentElement.closest("pre, code, script, .fragment, .MathJax, .MathJax_Display")) continue;
+      if (node.parentElement.closest("script, style, .MathJax, .MathJax_Display, .MathJax_Preview")) continue;
       const at = node.data.search(/\\f[$[\]{}]/);
       if (at >= 0) report(page, "raw formula command in the text: '" +
                                 shorten(node.data.slice(Math.max(0, at - 30), at + 50), 80) + "'");

@@ -2,7 +2,7 @@
 # The browser check's test: docs/check_book.sh on docs/check_book_fixture/ must exit 1 and report each defect of
 # bad.html (a formula error, a raw formula command, a missing image, a figure too wide at both window widths, a
 # table too wide at 800 px only, a link to a missing file, a link to a missing anchor, a backslash before '|', an
-# en dash before a flag name, a raw \ref in a listing) and nothing else; the good page (MathJax with its AMS
+# en dash before a flag name, a raw \ref or \f$ in a listing) and nothing else; the good page (MathJax with its AMS
 # extensions, a figure and table that fit, links that resolve, and the look-alikes of the markup defects that are
 # not defects: a '|' in code, en dashes between numbers and names, \| in a formula) must pass.
 #   docs/check_book_selftest.sh [MATHJAX_DIR]      (default /usr/share/javascript/mathjax)
@@ -33,6 +33,7 @@ expect "^bad\.html: link 'index\.html#no-such-anchor': index\.html has no anchor
 expect "^bad\.html: a backslash before '\|' .*: '.*elementary\\\\\|pi"
 expect "^bad\.html: an en dash before a flag name .*quick for a short run"
 expect "^bad\.html: raw \\\\ref markup: .*ref_dormand1980"
-expect ": 11 problems$"
+expect "^bad\.html: raw formula command in the text: '// the stage weights \\\\f\\\$b_i"
+expect ": 12 problems$"
 if [ "$failed" = 0 ]; then echo "selftest: every defect found, nothing else"; fi
 exit "$failed"
