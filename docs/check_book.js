@@ -75,17 +75,21 @@
   // MathJax's scripts and output, is left alone):
   // - a backslash before `|`: Markdown's escape of a table's column bar, kept literally inside a code span;
   // - an en dash (U+2013) right before a flag name: Doxygen's rendering of `--` outside a code span;
-  // - a raw \ref: a Doxygen command inside a string of a listing or where Doxygen does not read commands.
+  // - a raw \ref: a Doxygen command inside a string of a listing or where Doxygen does not read commands. The
+  //   source browser's pages (NAME_source.html) show each file verbatim, including the code that writes \ref
+  //   into the book's tables, so this one pattern is not applied there.
   const markupPatterns = [
-    [/\\\|/, "a backslash before '|' (an escaped table bar shown literally)"],
-    [/(^|[\s(\[`'"])\u2013[a-z][a-z0-9-]*/, "an en dash before a flag name ('--' printed as a dash)"],
-    [/\\ref\b/, "raw \\ref markup"],
+    [/\\\|/, "a backslash before '|' (an escaped table bar shown literally)", true],
+    [/(^|[\s(\[`'"])\u2013[a-zA-Z][a-zA-Z0-9-]*/, "an en dash before a flag name ('--' printed as a dash)", true],
+    [/\\ref\b/, "raw \\ref markup", false],
   ];
   function checkRawMarkup(page, doc) {
+    const sourcePage = /_source\.html$/.test(page);
     const walker = doc.createTreeWalker(doc.body, NodeFilter.SHOW_TEXT);
     for (let node = walker.nextNode(); node; node = walker.nextNode()) {
       if (node.parentElement.closest("script, style, .MathJax, .MathJax_Display, .MathJax_Preview")) continue;
-      for (const [pattern, what] of markupPatterns) {
+      for (const [pattern, what, inSources] of markupPatterns) {
+        if (sourcePage && !inSources) continue;
         const match = pattern.exec(node.data);
         if (!match) continue;
         const at = match.index + (match[1] ? match[1].length : 0);

@@ -53,13 +53,13 @@ struct Settings {
   std::string command;              ///< the reader's command line, for the page's fragment (cloth::reader_command)
 };
 
-/// The files the program writes into --out (figure data, tables, and each figure run's folder runs/NAME/), with
+/// The files the program writes into `--out` (figure data, tables, and each figure run's folder runs/NAME/), with
 /// or without the sweep, for prepare_outputs.
 std::vector<std::string> output_names(bool sweep);
 
 /// Refuses, before anything runs, a set of runs whose results would not fit in memory: every run's result is held
 /// until the figures are written, the figures' runs with the cloth at every step, the sweep's with an energy
-/// sample per step. Throws InputError naming --t-end (the steps) or --grid, whichever holds the larger share.
+/// sample per step. Throws InputError naming `--t-end` (the steps) or `--grid`, whichever holds the larger share.
 void require_memory_of_runs(const cloth::Options& opt, const Settings& settings);
 
 /// Runs every run on `settings.threads` threads: first the figures' runs, run (m, c) at index

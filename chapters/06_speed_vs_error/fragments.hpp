@@ -11,7 +11,7 @@
 
 namespace ch06 {
 
-/// The fragments the micro-benchmarks write, --bench-only included.
+/// The fragments the micro-benchmarks write, `--bench-only` included.
 std::vector<std::string> benchmark_fragment_names();
 /// The fragments the studies write.
 std::vector<std::string> study_fragment_names();

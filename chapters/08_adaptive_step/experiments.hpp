@@ -9,7 +9,7 @@
 
 namespace ch08 {
 
-/// The files run_experiments writes, relative to --out.
+/// The files run_experiments writes, relative to `--out`.
 std::vector<std::string> experiment_outputs();
 
 /// Runs every study and writes its data and its tables for the page into opt.run.out_dir (see experiments.cpp);

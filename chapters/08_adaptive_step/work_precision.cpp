@@ -235,7 +235,8 @@ int main(int argc, char** argv) {
     table.commit();
 
     // Dopri5 with and without the check on springs that turn: the global error in tolerances and the work.
-    MarkdownTable turn({"rtol = atol", "error at T / tolerance", "evaluations", "with --max-spring-turn 0.5: error / tolerance",
+    MarkdownTable turn({"rtol = atol", "error at T / tolerance", "evaluations",
+                        "with `--max-spring-turn 0.5`: error / tolerance",
                         "evaluations"},
                        "rrrrr");
     for (const double tol : tolerances) {

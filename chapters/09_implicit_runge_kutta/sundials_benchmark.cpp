@@ -339,7 +339,7 @@ void report_scene_comparison(const SceneParams& base, bool quick, const std::str
   for (const NewtonVariant variant : {NewtonVariant::full, NewtonVariant::modified}) {
     const Timed t = project_run(field, "implicit_euler", h, 1e-8, variant, T, tight_x, repeats);
     table.add_row({std::string("the book's implicit_euler, ") + newton_variant_name(variant) + " Newton",
-                   "--newton-tol 1e-8", format_number(t.seconds, 2), format_number(t.seconds / arkode_seconds, 2),
+                   "`--newton-tol 1e-8`", format_number(t.seconds, 2), format_number(t.seconds / arkode_seconds, 2),
                    format_number(t.error, 2)});
   }
   write_table_fragment(dir + "/report_scene.md", table, command);

@@ -93,13 +93,13 @@ Grid parse_grid(const std::string& text, double spacing) {
   return Grid{static_cast<int>(M), static_cast<int>(N), spacing};
 }
 
-/// The common flags of the model page, in the order --help lists them: the usage text and the "missing value"
+/// The common flags of the model page, in the order `--help` lists them: the usage text and the "missing value"
 /// message both come from this one table, so they cannot disagree.
 struct CommonFlag {
   const char* name;
   const char* value_name;
   const char* accepted;  ///< what the value means and which values are accepted
-  const char* fallback;  ///< the default, as --help prints it
+  const char* fallback;  ///< the default, as `--help` prints it
 };
 constexpr CommonFlag common_flags[] = {
     {"--grid", "MxN", "particles, M, N >= 2", "20x20"},

@@ -31,11 +31,11 @@ class CommandLine {
   CommandLine(std::string program, std::string summary);
 
   /// Restricts the common flags to `flags` (each a common flag's name, "--out" included when wanted); the
-  /// others are refused as unknown and left out of --help. Throws std::logic_error on a name that is not one.
+  /// others are refused as unknown and left out of `--help`. Throws std::logic_error on a name that is not one.
   void use_common(std::initializer_list<const char*> flags);
 
   /// Gives the common flag `flag` this program's own default `value` (the text a reader would type), which
-  /// --help then prints: `cli.set_default("--t-end", "1")`. Throws std::logic_error when the program does not
+  /// `--help` then prints: `cli.set_default("--t-end", "1")`. Throws std::logic_error when the program does not
   /// accept `flag` (call use_common first), and InputError from parse when `value` is not one it accepts.
   void set_default(const std::string& flag, std::string value);
 
@@ -45,7 +45,7 @@ class CommandLine {
   void add_switch(std::string flag, std::string help, std::function<void()> set);
 
   /// Parses argv. Throws InputError naming the flag on any bad input (a flag given twice included),
-  /// HelpRequested after printing --help. When the program uses the run flags, also checks the run they describe
+  /// HelpRequested after printing `--help`. When the program uses the run flags, also checks the run they describe
   /// before anything runs: the number of steps, the numbers of the model at t = 0 (limits.hpp), and the memory of
   /// one recorded run by an explicit method.
   Options parse(int argc, const char* const* argv) const;
@@ -62,12 +62,12 @@ class CommandLine {
     std::function<void()> set_switch;
   };
   std::string program_, summary_;
-  std::vector<std::string> common_;  ///< the common flags accepted, in the order --help lists them
+  std::vector<std::string> common_;  ///< the common flags accepted, in the order `--help` lists them
   std::vector<std::pair<std::string, std::string>> defaults_;  ///< the program's own defaults: flag, value
   std::vector<Flag> chapter_flags_;
 };
 
-/// Thrown by CommandLine::parse after it printed the usage for --help.
+/// Thrown by CommandLine::parse after it printed the usage for `--help`.
 struct HelpRequested {};
 
 /// Strict number parsing for flags: the whole text must be a finite number in the normal range of a double
@@ -81,7 +81,7 @@ void prepare_output_dir(const std::string& dir, const std::string& flag = "--out
 
 /// Runs a chapter's main body and turns what escapes it into the model page's exit statuses, each with one line
 /// "program: ..." on stderr: InputError 2, OutputError 4, Interrupted 128 + signal (130 SIGINT, 143 SIGTERM),
-/// std::bad_alloc and every other exception 1; --help 0. The body returns 0 (finished) or 3 (diverged or a step
+/// std::bad_alloc and every other exception 1; `--help` 0. The body returns 0 (finished) or 3 (diverged or a step
 /// failed). It also installs the SIGINT and SIGTERM handlers first, turns a signal that arrived while the body
 /// finished into 128 + signal, and makes std::terminate print one line and exit with status 1 (no core dump).
 int run_program(const std::string& program, const std::function<int()>& body);

@@ -45,7 +45,7 @@ std::string measured_by_line(const std::string& command);
 void write_text_fragment(const std::string& path, const std::string& text);
 
 /// The command a reader would type to measure it again: the program's name and its arguments, without the
-/// output folder (`--out DIR`), which is the build's business: "ch04_implicit_euler --report-runs".
+/// output folder (`--out DIR`), which is the build's business: `ch04_implicit_euler --report-runs`.
 std::string reader_command(int argc, const char* const* argv);
 
 /// `x` with `decimals` digits after the point ("3.00"), for columns whose digits should line up.

@@ -34,16 +34,16 @@ double explicit_bytes_per_particle();
 double implicit_bytes_per_particle(long long particles);
 
 /// Checks `runs_held` recorded runs of `settings` on `scene` whose results are held at once (each: the scene, an
-/// energy sample per step, the frames) against memory_limit(), naming the flag whose share is largest: --grid,
-/// --t-end (the samples; T / h steps), or `frames_flag` (--frames, or whatever set settings.frames).
+/// energy sample per step, the frames) against memory_limit(), naming the flag whose share is largest: `--grid`,
+/// `--t-end` (the samples; T / h steps), or `frames_flag` (`--frames`, or whatever set settings.frames).
 void require_run_memory(const SceneParams& scene, const RunSettings& settings, double bytes_per_particle,
                         const std::string& frames_flag = "--frames", int runs_held = 1);
 
 
 /// Refuses a scene and run whose numbers at t = 0 a double cannot hold, naming the flag: squared distances that
-/// overflow (--spacing, and --v0 and --t-end through the divergence bound R of the driver) or underflow
-/// (--spacing), a kinetic energy that overflows (--v0, --mass), a spring or gravity energy at the scale of R
-/// (--K, --mass), or omega^2 = K / m (--K, --mass).
+/// overflow (`--spacing`, and `--v0` and `--t-end` through the divergence bound R of the driver) or underflow
+/// (`--spacing`), a kinetic energy that overflows (`--v0`, `--mass`), a spring or gravity energy at the scale of R
+/// (`--K`, `--mass`), or omega^2 = K / m (`--K`, `--mass`).
 void require_representable(const SceneParams& scene, const RunSettings& settings);
 
 }  // namespace cloth

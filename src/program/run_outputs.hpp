@@ -41,7 +41,7 @@ std::vector<std::string> run_output_names();
 /// 128 + signal (130, 143) interrupted.
 int report(const RunResult& result, const Stepper& stepper, const std::string& program);
 
-/// write_outputs, then report; also says on stdout when frames.dat holds fewer frames than --frames asked for
+/// write_outputs, then report; also says on stdout when frames.dat holds fewer frames than `--frames` asked for
 /// (at most one per step). The one call a single-run program makes after simulate.
 int finish_run(const RunResult& result, const Stepper& stepper, const RunSettings& settings,
                const std::string& program, const KeyValues& extra = {});
