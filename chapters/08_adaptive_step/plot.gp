@@ -32,8 +32,10 @@ set terminal pngcairo size 1000,620 enhanced font 'Sans,10'
 unset ylabel
 set multiplot layout 2,3 title 'A jump J in the acceleration at t_0 + {/Symbol q} h: velocity error of the step and its estimate, per unit J h (each panel its own scale)'
 set xrange [0:1]
-# Each pair's own vertical range: a common one either cuts the largest errors off or flattens the smallest.
+# Each pair's own vertical range: a common one either cuts the largest errors off or flattens the smallest. A
+# margin above and below keeps a curve at its extreme off the frame and clear of the key.
 set autoscale y
+set offsets 0, 0, graph 0.25, graph 0.05
 set key top right font ',8'
 do for [i=1:6] {
   set title word(pairs, i) noenhanced
@@ -43,6 +45,7 @@ do for [i=1:6] {
 }
 unset multiplot
 set autoscale
+set offsets 0, 0, 0, 0
 unset xrange
 unset yrange
 
