@@ -40,6 +40,7 @@ double thread_seconds() {
 // Best of `runs` calls of body(): the run least disturbed by other processes (wall and thread CPU time).
 struct Timing {
   double wall = 1e300, cpu = 1e300;
+  double cpu_slowest = 0;  ///< the slowest repetition: with `cpu`, the spread of the timings
 };
 Timing best_of(int runs, const std::function<void()>& body) {
   Timing best;
@@ -47,7 +48,9 @@ Timing best_of(int runs, const std::function<void()>& body) {
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = thread_seconds();
     body();
-    best.cpu = std::min(best.cpu, thread_seconds() - c0);
+    const double cpu = thread_seconds() - c0;
+    best.cpu = std::min(best.cpu, cpu);
+    best.cpu_slowest = std::max(best.cpu_slowest, cpu);
     best.wall = std::min(best.wall, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   return best;
@@ -86,6 +89,7 @@ struct Row {
   double tol;
   double error, wall, cpu;
   long long evaluations;
+  double cpu_slowest;
 };
 
 }  // namespace
@@ -153,7 +157,7 @@ int main(int argc, char** argv) {
       const Timing t = best_of(runs, [&] { result = adaptive_simulate(rk, run, settings, false); });
       if (result.status != RunStatus::ok) return;
       rows.push_back({series, tableau.name, tol, position_error(result.x, ref), t.wall, t.cpu,
-                      result.counters.rhs_evaluations});
+                      result.counters.rhs_evaluations, t.cpu_slowest});
     };
     for (const Method* row : methods_of(MethodFamily::embedded_runge_kutta)) {
       const ButcherTableau& tableau = *row->tableau;
@@ -192,7 +196,7 @@ int main(int argc, char** argv) {
       });
       rows.push_back({series, method, tol,
                       position_error(Eigen::Map<const Eigen::VectorXd>(y.data(), static_cast<Eigen::Index>(y.size())), ref),
-                      t.wall, t.cpu, calls});
+                      t.wall, t.cpu, calls, t.cpu_slowest});
     };
     ch08::PlainCloth<double> plain(scene);
     ForceField field(scene);
@@ -327,13 +331,23 @@ int main(int argc, char** argv) {
     }
     levels.commit();
     write_table_fragment(dir + "levels.md", level_table, command);
+    // The spread of the repetitions: the slowest over the fastest, for every timed run of both sides.
+    std::vector<double> spreads;
+    for (const Row& r : rows) spreads.push_back(r.cpu_slowest / r.cpu);
+    std::sort(spreads.begin(), spreads.end());
+    const std::string spread =
+        spreads.empty() ? std::string()
+                        : " Each time is the fastest of " + std::to_string(runs) + " repetitions; the slowest repetition of a "
+                          "run took at most " + format_fixed(spreads.back(), 2) + " times its fastest (median " +
+                          format_fixed(spreads[spreads.size() / 2], 2) + " over the " + std::to_string(spreads.size()) +
+                          " runs), so ratios closer to 1 than that do not rank the two sides.";
     write_text_fragment(dir + "tries.md",
                         "The fastest project run of a level is the best of " + std::to_string(project_tries) +
                             " configurations (every pair with each norm and the two dopri5 variants, at " +
                             std::to_string(tolerances.size()) + " tolerances), the best odeint run on the project's "
                             "forces the best of " + std::to_string(odeint_project_force_tries) +
                             " (two steppers at the same tolerances); the last column compares one configuration with "
-                            "one, dopri5 against dopri5 at the same tolerances.\n");
+                            "one, dopri5 against dopri5 at the same tolerances." + spread + "\n");
     return 0;
   });
 }
