@@ -9,6 +9,7 @@
 #include "integrators/symplectic_euler.hpp"
 #include "integrators/xpbd.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/SparseLU>
 #include <cmath>
 

@@ -69,6 +69,9 @@ int main(int argc, char** argv) {
     } catch (const InputError& e) {
       throw InputError(std::string("--method: ") + e.what());
     }
+    // The methods that factor a sparse matrix need its memory, beyond what parse checked for an explicit run.
+    if (method->family == MethodFamily::implicit_runge_kutta || method->family == MethodFamily::multistep)
+      require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(opt.scene.grid.particle_count()));
     const Scene scene(opt.scene);
     ForceField field(scene);
     const MethodSettings settings = settings_of(*method, scene, newton, iterations);
@@ -78,9 +81,6 @@ int main(int argc, char** argv) {
     } catch (const InputError& e) {
       throw InputError("--method " + method->name + ": " + e.what());
     }
-    // The methods that factor a sparse matrix need its memory, beyond what parse checked for an explicit run.
-    if (method->family == MethodFamily::implicit_runge_kutta || method->family == MethodFamily::multistep)
-      require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(scene.particle_count()));
     prepare_outputs(opt.run.out_dir, run_output_names());
 
     RunSettings run = opt.run;

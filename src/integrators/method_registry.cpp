@@ -294,11 +294,13 @@ const std::vector<Method>& methods() {
       // distance constraint per spring (compliance 1/K), solved by Gauss-Seidel projections around the inertial
       // prediction. Converged, it is implicit Euler's step up to the term its update drops (integrators/xpbd.cpp);
       // with few iterations the springs stretch more than K allows. First order, like implicit Euler.
-      {"xpbd", "XPBD", "implicit Euler's step by Gauss-Seidel projections of compliant spring constraints",
+      {"xpbd", "XPBD", "implicit Euler's step by projections of compliant spring constraints "
+       "(\\ref ref_macklin2016 \"Macklin et al. 2016\")",
        MethodFamily::position_based, 1, std::nullopt, nullptr, make_xpbd},
       // Small steps (Chapter 10; Macklin et al. 2019): the same projections, one iteration per substep and many
       // substeps, which buys accuracy by shrinking the step rather than by iterating.
-      {"small_steps", "small steps", "XPBD with one iteration per substep and many substeps",
+      {"small_steps", "small steps", "one XPBD iteration per substep, many substeps "
+       "(\\ref ref_macklin2019 \"Macklin et al. 2019\")",
        MethodFamily::position_based, 1, std::nullopt, nullptr, make_small_steps},
   };
   return table;

@@ -40,7 +40,7 @@ struct MethodSettings {
   int local_global_iterations = 10;  ///< local/global iterations per step (Chapter 10; Liu et al. 2013 use ~10)
   int xpbd_iterations = 10;  ///< `xpbd`'s Gauss-Seidel sweeps per substep (`small_steps` takes one, by definition)
   /// Substeps per step of the position-based rows; unset, each row's own: 1 for `xpbd`, 20 for `small_steps`.
-  std::optional<int> substeps;
+  std::optional<int> substeps = std::nullopt;
 };
 
 /// One row of the registry.

@@ -9,6 +9,9 @@
 namespace cloth {
 
 // [jacobian_default]
+// Without --jacobian, the most exact matrix the chosen solver can take: CG needs a symmetric positive definite
+// matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry), LDU and LU take the exact one. An explicit
+// incompatible choice is refused by validate(NewtonSettings) with exit status 2.
 StiffnessTreatment default_treatment(LinearSolverKind solver, bool damped) {
   if (solver == LinearSolverKind::cg) return StiffnessTreatment::definite;
   if (solver == LinearSolverKind::ldlt && damped) return StiffnessTreatment::symmetric;
