@@ -435,3 +435,13 @@ TEST_CASE("ch10_cloth: every registered method runs by name and writes the stand
         std::string::npos);
 }
 #endif
+
+#ifdef CLOTH_HAVE_CH10_XPBD
+TEST_CASE("ch10_xpbd: an experiment program on its own scenes takes --out only") {
+  expect_refused("ch10_xpbd", {
+                                  {{"--K", "5"}, {"unknown flag '--K'"}},
+                                  {{"--method", "xpbd"}, {"unknown flag '--method'"}},
+                                  {{"--out"}, {"--out: missing value"}},
+                              });
+}
+#endif

@@ -197,6 +197,9 @@ std::vector<ProgramOutputs> every_output() {
       {"ch10_cloth", {}, run_files},
       {"ch10_cloth", {"--method", "xpbd", "--substeps", "4"}, run_files},
 #endif
+#ifdef CLOTH_HAVE_CH10_XPBD
+      {"ch10_xpbd", {}, {"xpbd_gap.md", "xpbd_strain.md"}},
+#endif
   };
 }
 
@@ -271,6 +274,11 @@ constexpr std::size_t folder_cases_ch10_peers = 0;
 constexpr std::size_t folder_cases_ch10_cloth = 2 * (4 + 1);
 #else
 constexpr std::size_t folder_cases_ch10_cloth = 0;
+#endif
+#ifdef CLOTH_HAVE_CH10_XPBD
+constexpr std::size_t folder_cases_ch10_xpbd = 2 + 1;
+#else
+constexpr std::size_t folder_cases_ch10_xpbd = 0;
 #endif
 
 Setup folder_at(const std::string& path) {
@@ -349,7 +357,7 @@ TEST_CASE("a folder in the way of any output of ch01-ch04, ch08 and ch10, in any
           "written") {
   const std::vector<Refused> cases = in_the_way_cases(every_output());
   CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08 + folder_cases_ch10 + folder_cases_ch10_peers +
-                       folder_cases_ch10_cloth);
+                       folder_cases_ch10_cloth + folder_cases_ch10_xpbd);
   expect_refused(cases_to_run(cases));
 }
 

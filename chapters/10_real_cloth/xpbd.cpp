@@ -65,8 +65,10 @@ State curtain_at(const Scene& scene, double t, std::vector<double>* strain = nul
 std::vector<std::string> gap_row(const Scene& scene, const State& start, double h) {
   const SceneParams& p = scene.params();
   ForceField field(scene);
+  // Tight enough that Newton's own error (about h tol (1 + |v|) in position) is far below every gap measured, and
+  // no tighter: on 0.625 g particles the residual test tol m (1 + |v|) is then at its rounding floor.
   NewtonSettings tight;
-  tight.tolerance = 1e-12;
+  tight.tolerance = 1e-9;
   tight.max_iterations = 100;
   ImplicitEuler newton(field, tight);
   State ie = start;
@@ -77,11 +79,11 @@ std::vector<std::string> gap_row(const Scene& scene, const State& start, double 
     row.insert(row.end(), {"Newton: " + newton.failure().reason, "", "", "", ""});
     return row;
   }
-  // Sweeps doubled until doubling them moves XPBD's answer by less than a thousandth of the gap.
+  // Sweeps doubled until doubling them moves XPBD's answer by less than a hundredth of the gap, or 32768 sweeps.
   MethodSettings settings;
   State xpbd, previous;
   double gap = 0, change = INFINITY;
-  for (int sweeps = 64; sweeps <= 65536 && !(change < 1e-3 * gap); sweeps *= 2) {
+  for (int sweeps = 64; sweeps <= 32768 && !(change < 1e-2 * gap); sweeps *= 2) {
     settings.xpbd_iterations = sweeps;
     xpbd = start;
     make_stepper("xpbd", field, settings)->step(h, xpbd.x, xpbd.v);
@@ -101,7 +103,8 @@ std::vector<std::string> gap_row(const Scene& scene, const State& start, double 
   row.insert(row.end(), {format_number((ie.x - start.x).cwiseAbs().maxCoeff(), 3), format_number(gap, 3),
                          format_number(predicted.cwiseAbs().maxCoeff(), 3),
                          format_number((xpbd.x - ie.x - predicted).cwiseAbs().maxCoeff(), 2),
-                         std::to_string(settings.xpbd_iterations) + " (" + format_number(change, 2) + ")"});
+                         std::to_string(settings.xpbd_iterations) + " (" + format_number(change, 2) + ")" +
+                             (change < 1e-2 * gap ? "" : ": not settled")});
   return row;
 }
 
