@@ -386,7 +386,7 @@ TEST_CASE("ch10_cloth: bad input gives status 2, one line naming the flag, nothi
   expect_refused("ch10_cloth", shared_flag_cases());
 }
 
-TEST_CASE("ch10_cloth: an unknown method lists every registered name; a method's flags are refused for another") {
+TEST_CASE("ch10_cloth: an unknown method lists every registered name, and a method refuses the flags of another") {
   std::vector<std::string> every_name = {"--method", "'rk5'"};
   for (const std::string& name : cloth::method_names()) every_name.push_back(name);
   expect_refused("ch10_cloth",
