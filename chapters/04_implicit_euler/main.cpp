@@ -361,7 +361,9 @@ int main(int argc, char** argv) {
     const NewtonSettings& newton = flags.given();
     const auto particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
     // The settings of a run at (K, D): the Newton matrix the solver takes unless --jacobian chose one.
-    const auto newton_for = [&](double K, double D) { return flags.settings_for(Scene(with_K_and_D(opt.scene, K, D))); };
+    const auto newton_for = [&](double K, double D) {
+      return flags.settings_for(Scene(with_K_and_D(opt.scene, K, D)));
+    };
     if (!want_report_runs) {
       const NewtonSettings settings = newton_for(opt.scene.stiffness, opt.scene.damping);
       require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles));

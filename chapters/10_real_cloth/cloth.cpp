@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <memory>
 #include <string>
+#include <vector>
 
 using namespace cloth;
 
@@ -38,10 +39,12 @@ MethodSettings settings_of(const Method& method, const Scene& scene, const Newto
 // run.txt's lines of the method's settings, and the stretch it let through at the recorded states.
 KeyValues run_lines(const Stepper& stepper, const RunResult& result) {
   KeyValues lines;
-  if (const auto* implicit = dynamic_cast<const NewtonStepper*>(&stepper)) lines = newton_run_lines(implicit->settings());
-  for (auto& line : IterationFlags::run_lines(stepper)) lines.push_back(line);
+  if (const auto* implicit = dynamic_cast<const NewtonStepper*>(&stepper))
+    lines = newton_run_lines(implicit->settings());
+  for (const auto& line : IterationFlags::run_lines(stepper)) lines.push_back(line);
   double strain = -1;
-  for (const Frame& f : result.frames) strain = std::max(strain, largest_spring_strain(stepper.field().scene(), f.positions));
+  for (const Frame& f : result.frames)
+    strain = std::max(strain, largest_spring_strain(stepper.field().scene(), f.positions));
   lines.emplace_back("largest_strain_frames", format_number(strain, 6));
   return lines;
 }

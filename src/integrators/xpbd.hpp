@@ -14,7 +14,8 @@ namespace cloth {
 /// One XPBD projection of the distance constraint C = |x_p - x_q| - L0 (Macklin et al. 2016, eq. (26)): the
 /// multiplier change
 ///   dlambda = (-C - alpha~ lambda - gamma grad C . (x - x^n)) / ((1 + gamma) (w_p + w_q) + alpha~),
-/// then x_p += w_p dlambda u and x_q -= w_q dlambda u (the update M^-1 grad C^T dlambda, grad_p C = u = (x_p - x_q)/|x_p - x_q|).
+/// then x_p += w_p dlambda u and x_q -= w_q dlambda u: the update M^-1 grad C^T dlambda, with grad_p C = u =
+/// (x_p - x_q) / |x_p - x_q|.
 /// w are inverse masses (0 for a pinned particle), alpha~ = alpha / h^2 the compliance over the step squared,
 /// gamma = alpha~ beta~ / h the damping ratio, `previous_p - previous_q` the spring vector at the start of the
 /// step x^n. Adds dlambda to `lambda` and returns it; a spring shorter than degenerate_length_fraction L0 has no
