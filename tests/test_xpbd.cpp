@@ -3,6 +3,7 @@
 // predicts, and small steps converge at first order in the substep.
 #include <doctest/doctest.h>
 
+#include "analysis/spring_strain.hpp"
 #include "base/input_error.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/method_registry.hpp"
@@ -207,4 +208,23 @@ TEST_CASE("the registry's position-based rows take their settings, and refuse th
   ForceField report_field(report_scene);
   CHECK_THROWS_AS(make_stepper("xpbd", report_field), InputError);
   CHECK_THROWS_AS(Xpbd(field, "xpbd", 0, 1), InputError);
+}
+
+TEST_CASE("the largest spring strain: zero at rest, and the stretch of the one spring a hand-made state stretches") {
+  SceneParams p = light_cloth(0.0);
+  p.pins = PinSet::corners;
+  const Scene scene(p);
+  Vector all(3 * scene.particle_count());
+  scene.all_positions(scene.initial_positions(), all);
+  CHECK(std::abs(largest_spring_strain(scene, all)) <= 1e-15);
+  // Particle (0, 0) is pinned; moving its neighbour (1, 0) away along x by 10 % of the spacing stretches the
+  // structural spring between them by 10 %, and every other spring of (1, 0) by less (they are not along x, or
+  // are longer: the flexion spring (1, 0)-(3, 0) is compressed).
+  const int k = scene.grid().particle(1, 0);
+  all[3 * k] += 0.1 * p.grid.d;
+  CHECK(largest_spring_strain(scene, all) == doctest::Approx(0.1).epsilon(1e-12));
+  // Squeezing the whole sheet to 90 % leaves every spring compressed by 10 %: the largest strain is -0.1.
+  scene.all_positions(scene.initial_positions(), all);
+  all *= 0.9;
+  CHECK(largest_spring_strain(scene, all) == doctest::Approx(-0.1).epsilon(1e-12));
 }
