@@ -81,13 +81,13 @@ bool Xpbd::step(double h, Vector& x, Vector& v) {
 
 void Xpbd::substep(double s) {
   const Scene& scene = field_.scene();
-  const auto free = Eigen::seqN(0, free_count_);
+  const Eigen::Index n = free_count_;
   // [xpbd_substep]
   // The inertial prediction x~ = x^n + s v^n + s^2 g, from which the constraints pull the particles back
   // (Macklin et al. 2016, Algorithm 1). lambda starts at 0 in every substep.
-  previous_(Eigen::all, free) = X_(Eigen::all, free);
-  V_.row(2).head(free_count_).array() -= s * scene.params().gravity;
-  X_(Eigen::all, free) += s * V_(Eigen::all, free);
+  previous_.leftCols(n) = X_.leftCols(n);
+  V_.row(2).head(n).array() -= s * scene.params().gravity;
+  X_.leftCols(n) += s * V_.leftCols(n);
   std::fill(lambda_.begin(), lambda_.end(), 0.0);
   for (int it = 0; it < iterations_; ++it) {
     for (SpringFamily family : all_spring_families) {
@@ -104,7 +104,7 @@ void Xpbd::substep(double s) {
     }
   }
   // The velocity the positions imply, as implicit Euler's v = (x - x^n) / s.
-  V_(Eigen::all, free) = (X_(Eigen::all, free) - previous_(Eigen::all, free)) / s;
+  V_.leftCols(n) = (X_.leftCols(n) - previous_.leftCols(n)) / s;
   // [xpbd_substep]
 }
 
