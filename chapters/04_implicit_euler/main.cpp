@@ -58,7 +58,8 @@ Outcome run_cloth(const SceneParams& params, RunSettings run, const NewtonSettin
                                  {"linear_solver", linear_solvers().name(stepper.settings().solver)},
                                  {"jacobian", stiffness_treatments().name(newton.treatment)},
                                  {"newton_tol", format_number(newton.tolerance, 10)},
-                                 {"newton_max_iter", std::to_string(newton.max_iterations)}});
+                                 {"newton_max_iter", std::to_string(newton.max_iterations)},
+                                 {"line_search", line_searches().name(newton.line_search)}});
   if (result.steps > 0)
     std::printf("  Newton iterations per step: %.3f (%lld in %lld steps), %lld factorizations\n",
                 result.newton_iterations_per_step(),
@@ -387,12 +388,18 @@ int main(int argc, char** argv) {
                   newton.tolerance = t;
                 });
   cli.add_value("--newton-max-iter", "N",
-                "full Newton's iterations before a step fails (default 20)",
+                "full Newton's iterations before a step fails (default " +
+                    std::to_string(NewtonSettings{}.max_iterations) + ")",
                 [&](const std::string& s) {
                   const long long n = parse_integer(s);
                   if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
                   newton.max_iterations = static_cast<int>(n);
                 });
+  cli.add_value("--line-search", line_searches().accepted("|"),
+                "potential (default): full and modified Newton minimise the incremental potential, dampers frozen "
+                "at the start of the step, with backtracking on it; residual: the stage equation as it is, with "
+                "backtracking on |r| (the first form, which fails from a flat sheet at frame rate)",
+                [&](const std::string& s) { newton.line_search = line_searches().parse(s); });
   cli.add_value("--jacobian", stiffness_treatments().accepted("|"),
                 "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
                 "(Choi & Ko 2002; the default with cg)",

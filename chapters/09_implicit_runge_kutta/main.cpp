@@ -96,6 +96,7 @@ std::vector<std::pair<std::string, std::string>> method_lines(const MethodChoice
   lines.emplace_back("jacobian", treatment_name(newton.treatment));
   lines.emplace_back("newton_tol", format_number(newton.tolerance, 10));
   lines.emplace_back("newton_max_iter", std::to_string(newton.max_iterations));
+  lines.emplace_back("line_search", line_searches().name(newton.line_search));
   lines.emplace_back("linear_solves", std::to_string(result.counters.linear_solves));
   lines.emplace_back("line_search_halvings", std::to_string(result.counters.line_search_halvings));
   return lines;
@@ -370,7 +371,14 @@ int main(int argc, char** argv) {
                   if (!(t > 0) || t >= 1) throw InputError("expected a number in (0, 1), got " + s);
                   choice.newton.tolerance = t;
                 });
-  cli.add_value("--newton-max-iter", "N", "Newton iterations before a stage fails (default 20)",
+  cli.add_value("--line-search", line_searches().accepted("|"),
+                "potential (default): full and modified Newton minimise the incremental potential, dampers frozen "
+                "at the stage's known position, with backtracking on it; residual: the stage equation as it is, "
+                "with backtracking on |r| (Chapter 4)",
+                [&](const std::string& s) { choice.newton.line_search = line_searches().parse(s); });
+  cli.add_value("--newton-max-iter", "N",
+                "Newton iterations before a stage fails (default " + std::to_string(NewtonSettings{}.max_iterations) +
+                    ")",
                 [&](const std::string& s) {
                   const long long n = parse_integer(s);
                   if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
