@@ -313,10 +313,15 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     V += dv_;
     double trial = residual_at(x_tilde, v_tilde, gamma, V, minimising);
     // Whether the step of fraction a is accepted: Armijo's sufficient decrease of Phi (Nocedal & Wright 2006,
-    // 3.1, c1 = 1e-4), or a decrease Phi cannot resolve; on the residual, any decrease of |r|_inf.
+    // 3.1, c1 = 1e-4); on the residual, any decrease of |r|_inf. Close to the solution the decrease Newton
+    // predicts, -a r.dv, falls below the rounding of Phi's sums: Phi can no longer judge the step. A fresh
+    // matrix's update is then taken whole (Newton's local convergence needs no search), a kept matrix's only
+    // if the residual fell.
+    const auto unresolved = [&](double a) { return -a * slope <= resolution + phi_resolution_; };
     const auto accepted = [&](double a) {
       if (!minimising) return trial < residual;
-      return phi_ <= phi + 1e-4 * a * slope || (slope < 0 && -a * slope <= resolution + phi_resolution_);
+      if (unresolved(a)) return fresh || trial < residual;
+      return phi_ <= phi + 1e-4 * a * slope;
     };
     if (!fresh && !accepted(1.0)) {
       // A kept matrix whose update was refused is too far from J: undo the update, refresh next time.
