@@ -33,7 +33,8 @@ void check_settings(const NewtonSettings& newton, const Scene& scene) {
   } catch (const InputError& e) {
     throw InputError(std::string("--newton ") + newton_variants().name(newton.variant) + " --linear-solver " +
                      linear_solvers().name(newton.solver) + " --jacobian " +
-                     stiffness_treatments().name(newton.treatment) + ": " + e.what());
+                     stiffness_treatments().name(newton.treatment) + " --line-search " +
+                     line_searches().name(newton.line_search) + ": " + e.what());
   }
 }
 
