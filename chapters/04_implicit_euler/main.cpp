@@ -365,8 +365,9 @@ void flat_step_history(const SceneParams& base, const std::string& dir, const st
 void curtain_runs(const SceneParams& base, const RunSettings& base_run, const std::string& dir,
                   const std::string& command) {
   const Scene scene(flat_curtain(base));
-  MarkdownTable table({"h [s]", "Newton", "line search", "outcome", "Newton iterations per step", "seconds"},
-                      "lllrrr");
+  MarkdownTable table({"h [s]", "Newton", "line search", "matrix", "outcome", "Newton iterations per step",
+                       "seconds"},
+                      "llllrrr");
   MarkdownTable frozen({"h [s]", "largest position difference at T, frozen against current dampers [m]",
                         "E(T), frozen [J]", "E(T), current [J]"},
                        "lrrr");
@@ -375,22 +376,36 @@ void curtain_runs(const SceneParams& base, const RunSettings& base_run, const st
     run.dt = 1.0 / per_second;
     run.t_end = 0.5;
     std::optional<RunResult> full[2];
-    for (const auto& [variant, search] : {std::pair{NewtonVariant::full, LineSearch::potential},
-                                          std::pair{NewtonVariant::full, LineSearch::residual},
-                                          std::pair{NewtonVariant::one, LineSearch::potential}}) {
+    struct Setting {
+      NewtonVariant variant;
+      LineSearch search;
+      StiffnessTreatment treatment;
+    };
+    for (const auto& [variant, search, treatment] :
+         {Setting{NewtonVariant::full, LineSearch::potential, StiffnessTreatment::exact},
+          Setting{NewtonVariant::full, LineSearch::potential, StiffnessTreatment::definite},
+          Setting{NewtonVariant::full, LineSearch::residual, StiffnessTreatment::exact},
+          Setting{NewtonVariant::one, LineSearch::potential, StiffnessTreatment::exact}}) {
       ForceField field(scene);
       NewtonSettings s;
       s.variant = variant;
       s.line_search = search;
+      s.treatment = treatment;
       const auto made = make_newton_stepper("implicit_euler", field, {s});
       RunResult r = simulate(*made, run, false);
       throw_if_interrupted();
       const bool ok = r.status == RunStatus::ok;
       table.add_row({"1/" + std::to_string(per_second), newton_variant_name(variant),
                      variant == NewtonVariant::one ? "none" : line_searches().name(search),
+                     std::string(stiffness_treatments().name(treatment)) +
+                         (search == LineSearch::potential && treatment == StiffnessTreatment::exact &&
+                                  variant == NewtonVariant::full
+                              ? " (" + std::to_string(r.counters.definite_fallbacks) + " definite)"
+                              : ""),
                      ok ? "finishes" : "**fails at step " + std::to_string(r.failed_step) + "**",
                      format_fixed(r.newton_iterations_per_step(), 2), format_number(r.wall_seconds, 2)});
-      if (variant == NewtonVariant::full && ok) full[search == LineSearch::residual ? 1 : 0] = std::move(r);
+      if (variant == NewtonVariant::full && treatment == StiffnessTreatment::exact && ok)
+        full[search == LineSearch::residual ? 1 : 0] = std::move(r);
     }
     if (full[0] && full[1]) {
       ForceField field(scene);
