@@ -351,8 +351,8 @@ void flat_step_history(const SceneParams& base, const std::string& dir, const st
     return k < v.size() ? format_number(v[k], digits) : std::string();
   };
   for (std::size_t k = 0; k < rows; ++k)
-    table.add_row({std::to_string(k), cell(residual.r, k, 3), k ? cell(residual.a, k - 1, 3) : "",
-                   cell(potential.r, k, 3), cell(potential.phi, k, 6), k ? cell(potential.a, k - 1, 3) : ""});
+    table.add_row({std::to_string(k), cell(residual.r, k, 3), k > 0 ? cell(residual.a, k - 1, 3) : "",
+                   cell(potential.r, k, 3), cell(potential.phi, k, 6), k > 0 ? cell(potential.a, k - 1, 3) : ""});
   table.add_row({"outcome", residual.ok ? "converged" : "not converged in 20", "",
                  potential.ok ? "converged" : "not converged in 20", "", ""});
   write_table_fragment(dir + "/flat_step.md", table, command);

@@ -41,8 +41,8 @@ struct SpringSums {
 // [spring_force_loop]
 template <DampingLaw law, bool sums, int lanes>
 // NOLINTNEXTLINE(readability-non-const-parameter): F is written, through the Eigen::Map views below
-void add_spring_batch(const Spring* s, double K, double D, const double* X, const double* V, const double* U0,
-                      const double* L0f, double* F, SpringSums* totals) {
+void add_spring_batch(const Spring* s, double K, double D, const double* X, const double* V, double* F,
+                      const double* U0, const double* L0f, SpringSums* totals) {
   using Slot = Eigen::Map<Eigen::Vector4d, Eigen::Aligned16>;
   using ConstSlot = Eigen::Map<const Eigen::Vector4d, Eigen::Aligned16>;
   using Batch = Eigen::Array<double, lanes, 1>;
@@ -90,11 +90,11 @@ void add_spring_forces(const Spring* first, const Spring* last, double K, double
   constexpr int lanes = 4;
   constexpr bool frozen = law == DampingLaw::projected_frozen || law == DampingLaw::report_frozen;
   for (; last - first >= lanes; first += lanes) {
-    add_spring_batch<law, sums, lanes>(first, K, D, X, V, U0, L0f, F, totals);
+    add_spring_batch<law, sums, lanes>(first, K, D, X, V, F, U0, L0f, totals);
     if constexpr (frozen) U0 += 4 * lanes, L0f += lanes;
   }
   for (; first != last; ++first) {
-    add_spring_batch<law, sums, 1>(first, K, D, X, V, U0, L0f, F, totals);
+    add_spring_batch<law, sums, 1>(first, K, D, X, V, F, U0, L0f, totals);
     if constexpr (frozen) U0 += 4, L0f += 1;
   }
 }
