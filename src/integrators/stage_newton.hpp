@@ -40,7 +40,8 @@ const char* newton_variant_name(NewtonVariant variant);
 /// What the iterated Newton variants (full, modified) solve and what their line search watches.
 enum class LineSearch {
   /// The stage as the minimisation of the incremental potential Phi(V) (Martin et al. 2011; Gast et al. 2015),
-  /// every damper frozen at x~ so that damping has a dissipation potential; Armijo backtracking on Phi. The
+  /// every damper frozen at the free-flight position x~ + gamma v~ so that damping has a dissipation potential;
+  /// Armijo backtracking on Phi. The
   /// Newton matrix is Phi's Hessian: symmetric for every treatment, positive definite for `definite`.
   potential,
   /// The stage equation as it is (current damper directions), with backtracking on |r|_inf down to 1/64 of the
@@ -89,7 +90,7 @@ void validate(const NewtonSettings& settings, const Scene& scene);
 
 /// Solves the stage equation r(V) = M (V - v~) - gamma f(x~ + gamma V, V) = 0 by Newton's method on the Newton
 /// matrix J = M - gamma df/dv - gamma^2 df/dx, assembled in the pattern the ForceField analysed once. With the
-/// potential line search (the default) the dampers are frozen at x~ and r = grad Phi, where
+/// potential line search (the default) the dampers are frozen at x~ + gamma v~ and r = grad Phi, where
 ///   Phi(V) = 1/2 (V - v~)^T M (V - v~) + E(x~ + gamma V) - E(x~) + gamma R(V),
 /// E the spring and gravity energy and R the frozen dampers' dissipation potential; J is then Phi's Hessian.
 /// The work is counted in the owning stepper's StepCounters.
@@ -116,7 +117,8 @@ class StageNewton {
   /// only the fractions.
   [[nodiscard]] const std::vector<double>& potential_history() const { return potentials_; }
   [[nodiscard]] const std::vector<double>& step_fractions() const { return fractions_; }
-  /// Phi at V for the stage (x~, v~, gamma), with the dampers frozen at x~ (Chapter 4's tests and page).
+  /// Phi at V for the stage (x~, v~, gamma), with the dampers frozen at x~ + gamma v~ (Chapter 4's tests and
+  /// page); not during a solve, whose frozen dampers it replaces.
   double potential(const Vector& x_tilde, const Vector& v_tilde, double gamma, const Vector& V);
 
   /// Seconds spent in assembly, factorization and solve since the last reset (for Chapter 6's breakdown).
