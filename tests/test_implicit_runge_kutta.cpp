@@ -76,8 +76,7 @@ TEST_CASE("implicit_euler on the stage machinery reproduces Chapter 4's recorded
   // Newton elsewhere than Chapter 4 did: the iterations end at another point within Newton's tolerance,
   // 1e-8 (1 + |V|_inf) with |V| about 20 m/s. The recordings solve the stage equation as it is, with the
   // dampers' current directions: the residual line search's equation (the default potential search freezes
-  // them at the start of the step, which moves the damped run by about 1 m by t = 0.3 s at this step, an O(h)
-  // change of the size of implicit Euler's own error; test_incremental_potential.cpp measures its order).
+  // them for the step, an O(h^2) change of the motion that test_incremental_potential.cpp measures).
   const Case cases[] = {
       {"K200_D20_full_ldu.dat", 200, 20, LinearSolverKind::ldu, StiffnessTreatment::exact, 20, 1e-12},
       {"K200_D20_full_cg.dat", 200, 20, LinearSolverKind::cg, StiffnessTreatment::definite, 20, 2e-7},

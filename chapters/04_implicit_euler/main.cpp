@@ -544,7 +544,7 @@ int main(int argc, char** argv) {
                 });
   cli.add_value("--line-search", line_searches().accepted("|"),
                 "potential (default): full and modified Newton minimise the incremental potential, dampers frozen "
-                "at the start of the step, with backtracking on it; residual: the stage equation as it is, with "
+                "at the free-flight position, with backtracking on it; residual: the stage equation as it is, with "
                 "backtracking on |r| (the first form, which fails from a flat sheet at frame rate)",
                 [&](const std::string& s) { newton.line_search = line_searches().parse(s); });
   cli.add_value("--jacobian", stiffness_treatments().accepted("|"),

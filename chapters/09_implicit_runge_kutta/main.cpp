@@ -373,7 +373,7 @@ int main(int argc, char** argv) {
                 });
   cli.add_value("--line-search", line_searches().accepted("|"),
                 "potential (default): full and modified Newton minimise the incremental potential, dampers frozen "
-                "at the stage's known position, with backtracking on it; residual: the stage equation as it is, "
+                "at the free-flight position, with backtracking on it; residual: the stage equation as it is, "
                 "with backtracking on |r| (Chapter 4)",
                 [&](const std::string& s) { choice.newton.line_search = line_searches().parse(s); });
   cli.add_value("--newton-max-iter", "N",
