@@ -274,7 +274,7 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     }
     if (k == settings_.max_iterations) break;
     // Newton update: J dv = -r with J = M - gamma df/dv - gamma^2 df/dx, at (x~ + gamma V, V) when fresh.
-    const bool fresh = stale;
+    bool fresh = stale;
     if (fresh && !refresh(V, gamma, settings_.treatment)) {
       fail_linear(k + 1, residual);
       counters_.newton_iterations += k + 1;
@@ -282,12 +282,23 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     }
     stale = !modified;
     bool solved = linear_solve(r_, dv_, k == 0);
+    const auto descends = [&] { return solved && r_.dot(dv_) > 0; };
+    // A kept matrix whose update does not descend is first replaced by a fresh one (modified Newton).
+    if (minimising && !fresh && !descends()) {
+      if (!refresh(V, gamma, settings_.treatment)) {
+        fail_linear(k + 1, residual);
+        counters_.newton_iterations += k + 1;
+        return false;
+      }
+      solved = linear_solve(r_, dv_, false);
+      fresh = true;
+    }
     // [definite_fallback]
     // Minimising, an update that does not descend (r . dv <= 0, from an exact Hessian that is indefinite here)
     // cannot decrease Phi at any step length. That iteration takes the definite matrix instead, which is
-    // positive definite and so always descends; the next iteration tries the exact one again, which near a
-    // minimiser of Phi is positive definite and converges quadratically.
-    if (minimising && settings_.treatment != StiffnessTreatment::definite && (!solved || !(r_.dot(dv_) > 0))) {
+    // positive definite and so always descends; full Newton's next iteration tries the exact one again, which
+    // near a minimiser of Phi is positive definite and converges quadratically.
+    if (minimising && settings_.treatment != StiffnessTreatment::definite && !descends()) {
       if (!refresh(V, gamma, StiffnessTreatment::definite)) {
         fail_linear(k + 1, residual);
         counters_.newton_iterations += k + 1;
@@ -295,7 +306,7 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
       }
       ++counters_.definite_fallbacks;
       solved = linear_solve(r_, dv_, false);
-      stale = true;
+      fresh = true;  // modified Newton keeps the definite matrix while it serves: it always descends
     }
     // [definite_fallback]
     if (!solved) {
