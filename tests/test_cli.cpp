@@ -324,7 +324,9 @@ TEST_CASE("ch04_implicit_euler: bad Newton and linear-solver settings are refuse
                      {{"--newton-max-iter", "2.5"}, {"--newton-max-iter", "whole number"}},
                      {{"--jacobian", "numeric"}, {"--jacobian", "'numeric'", "exact", "symmetric", "definite"}},
                      {{"--linear-solver", "cg", "--jacobian", "symmetric"}, {"--linear-solver cg", "definite"}},
-                     {{"--damping", "1", "--linear-solver", "ldlt", "--jacobian", "exact"}, {"--linear-solver ldlt", "lu"}},
+                     {{"--damping", "1", "--linear-solver", "ldlt", "--jacobian", "exact", "--line-search", "residual"},
+                      {"--linear-solver ldlt", "lu"}},
+                     {{"--line-search", "energy"}, {"--line-search", "'energy'", "potential", "residual"}},
                      {{"--newton", "two"}, {"--newton", "'two'", "full", "modified", "one"}},
                  });
 }

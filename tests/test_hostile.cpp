@@ -454,15 +454,15 @@ TEST_CASE("hostile flags: given twice, too small to represent, beyond what the m
       {"ch02_explicit_euler", {"--K", "\x1b[31m"}, "--K: expected a number, got '\\x1b[31m'"},
       {"ch02_explicit_euler", {"--pins", "a\tb"}, "--pins: unknown pin set 'a\\tb': expected corners, corner, edge or none"},
       // --report-runs checks the values its runs use, not only the command line's.
-      {"ch04_implicit_euler", {"--report-runs", "--linear-solver", "ldlt", "--jacobian", "exact"},
-       "--newton full --linear-solver ldlt --jacobian exact: linear solver ldlt needs a symmetric matrix, and the "
+      {"ch04_implicit_euler", {"--report-runs", "--linear-solver", "ldlt", "--jacobian", "exact", "--line-search", "residual"},
+       "--newton full --linear-solver ldlt --jacobian exact --line-search residual: linear solver ldlt needs a symmetric matrix, and the "
        "exact Jacobian of a damped cloth is not: use linear solver ldu or lu, or the symmetric or definite Jacobian "
        "treatment (--report-runs runs K = 200, D = 20)"},
       {"ch04_implicit_euler", {"--report-runs", "--linear-solver", "cg"},
        "--linear-solver cg: --report-runs compares the symmetric and the definite Newton matrix, and cg takes only the "
        "definite one: expected ldlt, ldu or lu"},
       {"ch04_implicit_euler", {"--report-runs", "--linear-solver", "cg", "--jacobian", "exact"},
-       "--newton full --linear-solver cg --jacobian exact: linear solver cg needs a symmetric positive definite "
+       "--newton full --linear-solver cg --jacobian exact --line-search potential: linear solver cg needs a symmetric positive definite "
        "matrix: use the definite Jacobian treatment with it, or linear solver ldlt, ldu or lu (--report-runs runs "
        "K = 50, D = 0)"},
       {"ch02_explicit_euler", {"--report-runs", "--v0", "1e149"},

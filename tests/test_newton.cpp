@@ -102,6 +102,8 @@ TEST_CASE("each linear solver is refused a matrix it cannot take") {
   CHECK_NOTHROW(validate(s, with_damping));
   s.solver = LinearSolverKind::ldlt;
   s.treatment = StiffnessTreatment::exact;
+  CHECK_NOTHROW(validate(s, with_damping));  // minimising, the exact matrix is Phi's Hessian: symmetric
+  s.line_search = LineSearch::residual;
   CHECK_THROWS_AS(validate(s, with_damping), InputError);
   CHECK_NOTHROW(validate(s, without_damping));  // undamped, the exact Jacobian is symmetric
   s.solver = LinearSolverKind::lu;

@@ -90,6 +90,7 @@ std::vector<std::pair<std::string, std::string>> method_lines(const MethodChoice
   lines.emplace_back("jacobian", stiffness_treatments().name(newton.treatment));
   lines.emplace_back("newton_tol", format_number(newton.tolerance, 10));
   lines.emplace_back("newton_max_iter", std::to_string(newton.max_iterations));
+  lines.emplace_back("line_search", line_searches().name(newton.line_search));
   lines.emplace_back("linear_solves", std::to_string(result.counters.linear_solves));
   lines.emplace_back("line_search_halvings", std::to_string(result.counters.line_search_halvings));
   return lines;

@@ -19,6 +19,8 @@ class NewtonStepper : public Stepper {
   [[nodiscard]] const NewtonSettings& settings() const { return newton_.settings(); }
   /// |r|_inf of the last stage equation solved (each Newton iteration, then after its last update).
   [[nodiscard]] const std::vector<double>& residual_history() const { return newton_.residual_history(); }
+  /// The Newton iteration of the last stage equation solved (its incremental potential and step fractions).
+  [[nodiscard]] const StageNewton& newton() const { return newton_; }
   [[nodiscard]] const StageNewton::Timing& timing() const { return newton_.timing(); }
   void reset_timing() { newton_.reset_timing(); }
 

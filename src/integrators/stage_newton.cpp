@@ -5,8 +5,10 @@
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace cloth {
 
@@ -27,10 +29,23 @@ const NameTable<NewtonVariant>& newton_variants() {
 
 const char* newton_variant_name(NewtonVariant variant) { return newton_variants().name(variant); }
 
+const NameTable<LineSearch>& line_searches() {
+  static const NameTable<LineSearch> table("line search",
+                                           {{LineSearch::potential, "potential"}, {LineSearch::residual, "residual"}});
+  return table;
+}
+
+namespace {
+// The exact Jacobian of a damped cloth's stage equation: the damper's d/dx has no transpose partner. The
+// Hessian of the incremental potential, frozen dampers and all, is symmetric.
+bool nonsymmetric(const NewtonSettings& settings, const Scene& scene) {
+  return settings.treatment == StiffnessTreatment::exact && scene.has_damping() && !settings.minimises();
+}
+}  // namespace
+
 NewtonSettings resolve(NewtonSettings settings, const Scene& scene) {
   if (settings.solver == LinearSolverKind::automatic)
-    settings.solver = settings.treatment == StiffnessTreatment::exact && scene.has_damping() ? LinearSolverKind::ldu
-                                                                                              : LinearSolverKind::ldlt;
+    settings.solver = nonsymmetric(settings, scene) ? LinearSolverKind::ldu : LinearSolverKind::ldlt;
   return settings;
 }
 
@@ -42,7 +57,7 @@ void validate(const NewtonSettings& settings, const Scene& scene) {
   if (s.solver == LinearSolverKind::cg && s.treatment != StiffnessTreatment::definite)
     throw InputError("linear solver cg needs a symmetric positive definite matrix: use the definite Jacobian "
                      "treatment with it, or linear solver ldlt, ldu or lu");
-  if (s.solver == LinearSolverKind::ldlt && s.treatment == StiffnessTreatment::exact && scene.has_damping())
+  if (s.solver == LinearSolverKind::ldlt && nonsymmetric(s, scene))
     throw InputError("linear solver ldlt needs a symmetric matrix, and the exact Jacobian of a damped cloth is "
                      "not: use linear solver ldu or lu, or the symmetric or definite Jacobian treatment");
 }
@@ -55,6 +70,8 @@ StageNewton::StageNewton(ForceField& field, NewtonSettings settings, StepCounter
   x1_.resize(n), f_.resize(n), r_.resize(n), dv_.resize(n);
   warm_dv_ = Vector::Zero(n);
   residuals_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 2);
+  potentials_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 2);
+  fractions_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 2);
   // The pattern never changes, so the fill-reducing ordering and the symbolic factorization are done once.
   if (settings_.solver == LinearSolverKind::ldlt) block_.analyze(A_, BlockLDU::Symmetry::symmetric);
   if (settings_.solver == LinearSolverKind::ldu) block_.analyze(A_, BlockLDU::Symmetry::general);
@@ -75,15 +92,19 @@ constexpr int steps_between_refreshes = 20;
 // iteration still gains more than half a digit; a slower chord iteration costs more force evaluations than a
 // fresh factorization saves.
 constexpr double slow_contraction = 0.25;
+// The potential line search's smallest step fraction: a descending update decreases Phi long before this, so
+// reaching it means the update does not descend (an indefinite matrix) or Phi is not finite along it.
+constexpr double min_step_fraction = 0x1p-30;
 }  // namespace
 
-bool StageNewton::refresh(const Vector& V, double gamma) {
+bool StageNewton::refresh(const Vector& V, double gamma, StiffnessTreatment treatment) {
   using clock = std::chrono::steady_clock;
   linear_failure_.clear();
   linear_failure_kind_ = StepFailureKind::none;
   factored_ = false;
   auto t0 = clock::now();
-  field_.newton_matrix(x1_, V, gamma, settings_.treatment, A_);
+  if (settings_.minimises()) field_.frozen_newton_matrix(x1_, gamma, treatment, A_);
+  else field_.newton_matrix(x1_, V, gamma, treatment, A_);
   ++counters_.jacobian_assemblies;
   timing_.assembly += seconds_since(t0);
   t0 = clock::now();
@@ -173,14 +194,42 @@ bool StageNewton::linear_solve(const Vector& rhs, Vector& dv, bool warm_start) {
   return true;
 }
 
-double StageNewton::residual_at(const Vector& x_tilde, const Vector& v_tilde, double gamma, const Vector& V) {
+double StageNewton::residual_at(const Vector& x_tilde, const Vector& v_tilde, double gamma, const Vector& V,
+                                bool minimising) {
   // r(V) = M (V - v~) - gamma f(x~ + gamma V, V); r_ holds -r, the right-hand side of the Newton update.
   const double m = field_.scene().params().mass;
   x1_ = x_tilde + gamma * V;
-  field_.forces(x1_, V, f_);
   ++counters_.rhs_evaluations;
+  if (!minimising) {
+    field_.forces(x1_, V, f_);
+    r_ = gamma * f_ - m * (V - v_tilde);
+    return r_.lpNorm<Eigen::Infinity>();
+  }
+  // [incremental_potential]
+  // Phi(V) = 1/2 m |V - v~|^2 + E_spring(x~ + gamma V) + m g gamma sum V_z + gamma R(V): gravity's energy
+  // counted from x~ (exactly, without the cancellation of two large sums), the spring energy and the frozen
+  // dampers' dissipation potential R from the force pass itself.
+  const ForceField::Potentials p = field_.frozen_forces(x1_, V, f_);
   r_ = gamma * f_ - m * (V - v_tilde);
+  const double inertia = 0.5 * m * (V - v_tilde).squaredNorm();
+  const int n = field_.scene().free_count();
+  const double fall = m * field_.scene().params().gravity * gamma * V.reshaped(3, n).row(2).sum();
+  phi_ = inertia + p.spring + fall + gamma * p.dissipation;
+  // [incremental_potential]
+  // A sum of k terms is exact to (k - 1) u sum |terms| (Higham 2002, 2.2): differences of Phi below this are
+  // rounding, and cannot judge a step.
+  const double magnitude = inertia + p.spring + std::abs(m * field_.scene().params().gravity * gamma) *
+                                                    V.reshaped(3, n).row(2).cwiseAbs().sum() +
+                           gamma * p.dissipation;
+  phi_resolution_ = std::numeric_limits<double>::epsilon() * (p.terms + 3 * n + 4) * magnitude;
   return r_.lpNorm<Eigen::Infinity>();
+}
+
+double StageNewton::potential(const Vector& x_tilde, const Vector& v_tilde, double gamma, const Vector& V) {
+  x1_ = x_tilde + gamma * v_tilde;
+  field_.freeze_dampers(x1_);
+  residual_at(x_tilde, v_tilde, gamma, V, true);
+  return phi_;
 }
 
 void StageNewton::fail_linear(int iteration, double residual) {
@@ -194,10 +243,24 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
   const double m = field_.scene().params().mass;
   const double tol = settings_.tolerance;
   const bool modified = settings_.variant == NewtonVariant::modified && !settings_.one_iteration();
+  const bool minimising = settings_.minimises();
   residuals_.clear();
+  potentials_.clear();
+  fractions_.clear();
+  // The dissipation potential's dampers are frozen for the whole solve: only then is damping a gradient, and Phi
+  // a function to minimise. They point as at x~ + gamma v~, where the stage's particles would be if no force
+  // acted during it: that position is O(h^2) from the stage's, so the frozen damper changes the stage by
+  // O(h^3) and keeps the second order of sdirk2, BDF2 and the trapezoidal rule (taken at x~ itself, the start
+  // of the step for implicit Euler, the change is O(h^2) and every method drops to first order on a damped
+  // cloth). Free flight has no stiff term: it stays a sensible position at frame-rate steps.
+  if (minimising) {
+    x1_ = x_tilde + gamma * v_tilde;
+    field_.freeze_dampers(x1_);
+  }
   // [newton_loop]
-  double residual = residual_at(x_tilde, v_tilde, gamma, V);
+  double residual = residual_at(x_tilde, v_tilde, gamma, V, minimising);
   residuals_.push_back(residual);
+  if (minimising) potentials_.push_back(phi_);
   double update = INFINITY, previous_update = INFINITY;
   // Modified Newton keeps the matrix it has unless gamma moved, it is old, or it was never made.
   bool stale = !modified || !factored_ || std::abs(gamma / factored_gamma_ - 1) > gamma_change_limit ||
@@ -211,14 +274,42 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     }
     if (k == settings_.max_iterations) break;
     // Newton update: J dv = -r with J = M - gamma df/dv - gamma^2 df/dx, at (x~ + gamma V, V) when fresh.
-    const bool fresh = stale;
-    if (fresh && !refresh(V, gamma)) {
+    bool fresh = stale;
+    if (fresh && !refresh(V, gamma, settings_.treatment)) {
       fail_linear(k + 1, residual);
       counters_.newton_iterations += k + 1;
       return false;
     }
     stale = !modified;
-    if (!linear_solve(r_, dv_, k == 0)) {
+    bool solved = linear_solve(r_, dv_, k == 0);
+    const auto descends = [&] { return solved && r_.dot(dv_) > 0; };
+    // A kept matrix whose update does not descend is first replaced by a fresh one (modified Newton).
+    if (minimising && !fresh && !descends()) {
+      if (!refresh(V, gamma, settings_.treatment)) {
+        fail_linear(k + 1, residual);
+        counters_.newton_iterations += k + 1;
+        return false;
+      }
+      solved = linear_solve(r_, dv_, false);
+      fresh = true;
+    }
+    // [definite_fallback]
+    // Minimising, an update that does not descend (r . dv <= 0, from an exact Hessian that is indefinite here)
+    // cannot decrease Phi at any step length. That iteration takes the definite matrix instead, which is
+    // positive definite and so always descends; full Newton's next iteration tries the exact one again, which
+    // near a minimiser of Phi is positive definite and converges quadratically.
+    if (minimising && settings_.treatment != StiffnessTreatment::definite && !descends()) {
+      if (!refresh(V, gamma, StiffnessTreatment::definite)) {
+        fail_linear(k + 1, residual);
+        counters_.newton_iterations += k + 1;
+        return false;
+      }
+      ++counters_.definite_fallbacks;
+      solved = linear_solve(r_, dv_, false);
+      fresh = true;  // modified Newton keeps the definite matrix while it serves: it always descends
+    }
+    // [definite_fallback]
+    if (!solved) {
       fail_linear(k + 1, residual);
       counters_.newton_iterations += k + 1;
       return false;
@@ -235,29 +326,70 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
       }
       return true;
     }
+    const double phi = phi_, resolution = phi_resolution_;
+    // grad Phi . dv = r . dv = -(r_ . dv): negative when dv descends, as it does whenever J is positive definite.
+    const double slope = -r_.dot(dv_);
     V += dv_;
-    double trial = residual_at(x_tilde, v_tilde, gamma, V);
-    if (!fresh && !(trial < residual)) {
-      // A kept matrix whose update raised the residual is too far from J: undo the update, refresh next time.
+    double trial = residual_at(x_tilde, v_tilde, gamma, V, minimising);
+    // Whether the step of fraction a is accepted: Armijo's sufficient decrease of Phi (Nocedal & Wright 2006,
+    // 3.1, c1 = 1e-4); on the residual, any decrease of |r|_inf. Close to the solution the decrease Newton
+    // predicts, -a r.dv, falls below the rounding of Phi's sums: Phi can no longer judge the step. A fresh
+    // matrix's update is then taken whole (Newton's local convergence needs no search), a kept matrix's only
+    // if the residual fell.
+    const auto unresolved = [&](double a) { return -a * slope <= resolution + phi_resolution_; };
+    const auto accepted = [&](double a) {
+      if (!minimising) return trial < residual;
+      if (unresolved(a)) return fresh || trial < residual;
+      return phi_ <= phi + 1e-4 * a * slope;
+    };
+    if (!fresh && !accepted(1.0)) {
+      // A kept matrix whose update was refused is too far from J: undo the update, refresh next time.
       V -= dv_;
-      residual = residual_at(x_tilde, v_tilde, gamma, V);
+      residual = residual_at(x_tilde, v_tilde, gamma, V, minimising);
       residuals_.push_back(residual);
+      if (minimising) potentials_.push_back(phi_);
+      fractions_.push_back(0.0);
       stale = true;
       continue;
     }
-    // Backtracking line search (Dennis & Schnabel 1996, 6.3): far from the solution, or when the matrix is
-    // only an approximation of J (the symmetric and definite treatments), the full update can make the
-    // residual grow; halving it until the residual decreases keeps Newton from wandering off. Close to the
-    // solution the full step always decreases it, so quadratic convergence is untouched.
     double step_fraction = 1.0;
-    while (!(trial < residual) && step_fraction > 1.0 / 64) {
-      step_fraction *= 0.5;
-      V -= step_fraction * dv_;  // back from V + 2a dv to V + a dv
-      trial = residual_at(x_tilde, v_tilde, gamma, V);
-      ++counters_.line_search_halvings;
+    if (minimising) {
+      // [potential_line_search]
+      // Backtracking on Phi: Newton's update minimises Phi's quadratic model, which far from the minimiser can
+      // promise much more than Phi gives (from a flat sheet the model has no transverse spring stiffness at
+      // all). With a positive definite J the update descends, so halving it ends with sufficient decrease.
+      while (!accepted(step_fraction) && step_fraction > min_step_fraction) {
+        step_fraction *= 0.5;
+        V -= step_fraction * dv_;  // back from V + 2a dv to V + a dv
+        trial = residual_at(x_tilde, v_tilde, gamma, V, minimising);
+        ++counters_.line_search_halvings;
+      }
+      // [potential_line_search]
+      if (!accepted(step_fraction)) {
+        failure_ = {StepFailureKind::line_search_exhausted,
+                    "Newton iteration " + std::to_string(k + 1) + ": no step down to 2^-30 of the update decreases "
+                    "the incremental potential (|r|_inf = " + format_number(residual, 3) + ", slope r.dv = " +
+                    format_number(-slope, 3) + ")"};
+        counters_.newton_iterations += k + 1;
+        return false;
+      }
+    } else {
+      // Backtracking on the residual (Dennis & Schnabel 1996, 6.3): far from the solution, or when the matrix is
+      // only an approximation of J (the symmetric and definite treatments), the full update can make the
+      // residual grow; halving it until the residual decreases keeps Newton from wandering off. Close to the
+      // solution the full step always decreases it, so quadratic convergence is untouched. |r|_inf is not a
+      // function the update descends, so the search may find no decrease: it stops at 1/64 and keeps that step.
+      while (!accepted(step_fraction) && step_fraction > 1.0 / 64) {
+        step_fraction *= 0.5;
+        V -= step_fraction * dv_;
+        trial = residual_at(x_tilde, v_tilde, gamma, V, minimising);
+        ++counters_.line_search_halvings;
+      }
     }
     residual = trial;
     residuals_.push_back(residual);
+    if (minimising) potentials_.push_back(phi_);
+    fractions_.push_back(step_fraction);
     previous_update = update;
     update = step_fraction * dv_.lpNorm<Eigen::Infinity>();
     // A kept matrix that contracts slowly costs more iterations than a new factorization (SUNDIALS' crdown).

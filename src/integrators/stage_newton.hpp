@@ -37,14 +37,30 @@ enum class NewtonVariant {
 const NameTable<NewtonVariant>& newton_variants();
 const char* newton_variant_name(NewtonVariant variant);
 
+/// What the iterated Newton variants (full, modified) solve and what their line search watches.
+enum class LineSearch {
+  /// The stage as the minimisation of the incremental potential Phi(V) (Martin et al. 2011; Gast et al. 2015),
+  /// every damper frozen at the free-flight position x~ + gamma v~ so that damping has a dissipation potential;
+  /// Armijo backtracking on Phi. The
+  /// Newton matrix is Phi's Hessian: symmetric for every treatment, positive definite for `definite`.
+  potential,
+  /// The stage equation as it is (current damper directions), with backtracking on |r|_inf down to 1/64 of the
+  /// update: the book's first Newton, which cannot take a frame step from a flat sheet.
+  residual
+};
+/// The line searches by name: potential, residual.
+const NameTable<LineSearch>& line_searches();
+
 /// Newton's stopping rule and its linear algebra.
 struct NewtonSettings {
   /// Converged when both |dv|_inf <= tol (1 + |V|_inf) and |r|_inf <= tol m (1 + |V|_inf), where
   /// r = M (V - v~) - gamma f(x~ + gamma V, V) is the residual after the update.
   double tolerance = 1e-8;
-  /// Iterations before the stage is declared failed. 1 is Baraff & Witkin's linearly implicit step: one
-  /// iteration from the guess, accepted as it is, by design (the same as NewtonVariant::one).
-  int max_iterations = 20;
+  /// Iterations before the stage is declared failed: a guard, not a criterion. Minimising, every iteration
+  /// decreases Phi, but from a flat sheet at frame rate exact Newton needs about 20 before it turns quadratic,
+  /// and the definite matrix converges only linearly (Chapter 4). 1 is Baraff & Witkin's linearly implicit
+  /// step: one iteration from the guess, accepted as it is, by design (the same as NewtonVariant::one).
+  int max_iterations = 100;
   LinearSolverKind solver = LinearSolverKind::automatic;
   /// exact (the default) makes Newton converge quadratically, damped or not; symmetric suits ldlt and lu;
   /// cg needs definite.
@@ -52,13 +68,19 @@ struct NewtonSettings {
   double cg_tolerance = 1e-10;  ///< relative residual of each CG solve
   int cg_max_iterations = 2000;
   NewtonVariant variant = NewtonVariant::full;
+  LineSearch line_search = LineSearch::potential;
 
   /// Whether the iteration is the one-iteration step (variant one, or a limit of one iteration).
   [[nodiscard]] bool one_iteration() const { return variant == NewtonVariant::one || max_iterations == 1; }
+  /// Whether Newton minimises the incremental potential. The one-iteration step never does: it takes its single
+  /// update whole (a fraction of it would be an inconsistent step: half the update under gravity alone is half
+  /// of gravity), so it has nothing to search and keeps the stage equation with the current dampers.
+  [[nodiscard]] bool minimises() const { return line_search == LineSearch::potential && !one_iteration(); }
 };
 
 /// The settings with `automatic` replaced by the solver the matrix calls for: the exact Jacobian of a damped
-/// cloth is not symmetric, so it gets ldu; every other treatment gives a symmetric matrix, which gets ldlt.
+/// cloth's stage equation is not symmetric, so it gets ldu; every other matrix (the other treatments, and every
+/// Hessian of the incremental potential) is symmetric and gets ldlt.
 NewtonSettings resolve(NewtonSettings settings, const Scene& scene);
 
 /// Throws InputError when a setting is out of range or the solver cannot take the matrix the treatment gives (CG
@@ -67,8 +89,11 @@ NewtonSettings resolve(NewtonSettings settings, const Scene& scene);
 void validate(const NewtonSettings& settings, const Scene& scene);
 
 /// Solves the stage equation r(V) = M (V - v~) - gamma f(x~ + gamma V, V) = 0 by Newton's method on the Newton
-/// matrix J = M - gamma df/dv - gamma^2 df/dx, assembled in the pattern the ForceField analysed once. The work
-/// is counted in the owning stepper's StepCounters.
+/// matrix J = M - gamma df/dv - gamma^2 df/dx, assembled in the pattern the ForceField analysed once. With the
+/// potential line search (the default) the dampers are frozen at x~ + gamma v~ and r = grad Phi, where
+///   Phi(V) = 1/2 (V - v~)^T M (V - v~) + E(x~ + gamma V) - E(x~) + gamma R(V),
+/// E the spring and gravity energy and R the frozen dampers' dissipation potential; J is then Phi's Hessian.
+/// The work is counted in the owning stepper's StepCounters.
 class StageNewton {
  public:
   StageNewton(ForceField& field, NewtonSettings settings, StepCounters& counters);
@@ -87,6 +112,14 @@ class StageNewton {
   [[nodiscard]] const NewtonSettings& settings() const { return settings_; }
   /// |r|_inf at the start of each Newton iteration of the last solve, and after its last update.
   [[nodiscard]] const std::vector<double>& residual_history() const { return residuals_; }
+  /// With the potential line search, Phi(V) at the same points as residual_history() (gravity's energy counted
+  /// from x~, the spring energy whole), and the step fraction each update took; with the residual line search
+  /// only the fractions.
+  [[nodiscard]] const std::vector<double>& potential_history() const { return potentials_; }
+  [[nodiscard]] const std::vector<double>& step_fractions() const { return fractions_; }
+  /// Phi at V for the stage (x~, v~, gamma), with the dampers frozen at x~ + gamma v~ (Chapter 4's tests and
+  /// page); not during a solve, whose frozen dampers it replaces.
+  double potential(const Vector& x_tilde, const Vector& v_tilde, double gamma, const Vector& V);
 
   /// Seconds spent in assembly, factorization and solve since the last reset (for Chapter 6's breakdown).
   struct Timing {
@@ -96,12 +129,14 @@ class StageNewton {
   void reset_timing() { timing_ = {}; }
 
  private:
-  // Assembles J at (x1_, V) for gamma and factorizes it (or builds CG's preconditioner); false on failure.
-  bool refresh(const Vector& V, double gamma);
+  // Assembles J at (x1_, V) for gamma with `treatment` and factorizes it (or builds CG's preconditioner); false
+  // on failure.
+  bool refresh(const Vector& V, double gamma, StiffnessTreatment treatment);
   // dv = J^{-1} rhs with the matrix last refreshed.
   bool linear_solve(const Vector& rhs, Vector& dv, bool warm_start);
-  // Sets x1_ = x~ + gamma V, f_ and r_ = -r(V), and returns |r|_inf.
-  double residual_at(const Vector& x_tilde, const Vector& v_tilde, double gamma, const Vector& V);
+  // Sets x1_ = x~ + gamma V, f_ and r_ = -r(V), and returns |r|_inf; when minimising, also phi_ = Phi(V) and
+  // phi_resolution_, the rounding bound of its evaluation.
+  double residual_at(const Vector& x_tilde, const Vector& v_tilde, double gamma, const Vector& V, bool minimising);
   void fail_linear(int iteration, double residual);
 
   /// The block factorizations' updates are accepted up to this normwise backward error, a thousandth of
@@ -119,7 +154,8 @@ class StageNewton {
   BlockJacobiPCG cg_;
   Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu_;
   Vector x1_, f_, r_, dv_, warm_dv_;
-  std::vector<double> residuals_;
+  std::vector<double> residuals_, potentials_, fractions_;
+  double phi_ = 0, phi_resolution_ = 0;
   Timing timing_;
   // Modified Newton: whether A_ holds a usable factorization, for which gamma, and how many steps ago.
   bool factored_ = false;

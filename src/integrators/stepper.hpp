@@ -17,7 +17,10 @@ struct StepCounters {
   long long linear_solves = 0;
   long long cg_iterations = 0;        ///< conjugate-gradient iterations, summed over solves
   long long newton_iterations = 0;    ///< summed over steps
-  long long line_search_halvings = 0; ///< Newton updates halved because the full one raised the residual
+  long long line_search_halvings = 0; ///< Newton updates halved because the full one raised the residual or
+                                      ///< did not decrease the incremental potential enough
+  long long definite_fallbacks = 0;   ///< minimising Newton iterations whose exact update did not descend, solved
+                                      ///< again with the definite matrix
 };
 
 /// What stopped a step. run.txt's status names the kind (`step_failed newton_not_converged ...`, the model page's
@@ -28,7 +31,7 @@ enum class StepFailureKind {
   factorization_singular,  ///< a pivot of the direct factorization was singular
   cg_not_converged,        ///< conjugate gradients did not reach their tolerance
   refinement_failed,       ///< iterative refinement could not bring the backward error down
-  line_search_exhausted,   ///< no damped Newton update lowered the residual
+  line_search_exhausted,   ///< no damped Newton update lowered the incremental potential
   step_size_too_small,     ///< step control needed a step below its floor
 };
 

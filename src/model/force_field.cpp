@@ -18,11 +18,20 @@ const NameTable<StiffnessTreatment>& stiffness_treatments() {
 
 namespace {
 
-enum class DampingLaw { none, projected, report };
+// The frozen laws are the dampers of the incremental potential (freeze_dampers): projected_frozen acts along the
+// direction u0 and report_frozen with the length l0 of the start of the step.
+enum class DampingLaw { none, projected, report, projected_frozen, report_frozen };
+
+// The two sums the frozen pass returns: sum (l - L0)^2, and sum ((v_p - v_q).u0)^2 or sum l0 |v_p - v_q|^2.
+struct SpringSums {
+  double stretch = 0;
+  double dissipation = 0;
+};
 
 // Adds the spring and damping forces of the `lanes` springs starting at s to F. For a spring (p, q) with
 // d = x_p - x_q, l = |d|, u = d / l: spring K (L0 - l) u; projected damper -D ((v_p - v_q) . u) u; report damper
-// -D (v_p - v_q) l. q receives the opposite force.
+// -D (v_p - v_q) l. q receives the opposite force. U0 and L0f hold the batch's frozen directions and lengths
+// (read by the frozen laws only); with `sums`, the batch's terms of the potentials are added to *sums.
 //
 // Two choices make this loop fast (Chapter 6 measures them). X, V and F hold four numbers per particle slot,
 // (x, y, z, 0), so that a particle is read or updated with whole-vector loads and stores rather than three
@@ -33,8 +42,9 @@ enum class DampingLaw { none, projected, report };
 // the listing Chapter 1 shows.
 // NOLINTBEGIN(readability-non-const-parameter)
 // [spring_force_loop]
-template <DampingLaw law, int lanes>
-void add_spring_batch(const Spring* s, double K, double D, const double* X, const double* V, double* F) {
+template <DampingLaw law, bool sums, int lanes>
+void add_spring_batch(const Spring* s, double K, double D, const double* X, const double* V, double* F,
+                      const double* U0, const double* L0f, SpringSums* totals) {
   using Slot = Eigen::Map<Eigen::Vector4d, Eigen::Aligned16>;
   using ConstSlot = Eigen::Map<const Eigen::Vector4d, Eigen::Aligned16>;
   using Batch = Eigen::Array<double, lanes, 1>;
@@ -48,7 +58,9 @@ void add_spring_batch(const Spring* s, double K, double D, const double* X, cons
     L0[k] = s[k].rest_length;
     if constexpr (law != DampingLaw::none) {
       w[k] = ConstSlot(V + p[k]) - ConstSlot(V + q[k]);
-      wd[k] = w[k].dot(d[k]);
+      if constexpr (law == DampingLaw::projected) wd[k] = w[k].dot(d[k]);
+      if constexpr (law == DampingLaw::projected_frozen) wd[k] = w[k].dot(ConstSlot(U0 + 4 * k));
+      if constexpr (law == DampingLaw::report_frozen) wd[k] = L0f[k] * D;  // the frozen D l0
     }
   }
   // A coincident pair makes c infinite or NaN here; the guard below discards it.
@@ -57,22 +69,36 @@ void add_spring_batch(const Spring* s, double K, double D, const double* X, cons
   if constexpr (law == DampingLaw::projected) c -= D * wd / l2;
   Batch Dl;
   if constexpr (law == DampingLaw::report) Dl = D * l;
+  if constexpr (sums) totals->stretch += (l - L0).square().sum();
   for (int k = 0; k < lanes; ++k) {
+    if constexpr (sums && law == DampingLaw::projected_frozen) totals->dissipation += wd[k] * wd[k];
+    if constexpr (sums && law == DampingLaw::report_frozen) totals->dissipation += L0f[k] * w[k].squaredNorm();
     if (l[k] <= degenerate_length_fraction * L0[k]) continue;  // no direction: no force (Chapter 7)
     Eigen::Vector4d f = c[k] * d[k];
     if constexpr (law == DampingLaw::report) f -= Dl[k] * w[k];
+    if constexpr (law == DampingLaw::projected_frozen) f -= (D * wd[k]) * ConstSlot(U0 + 4 * k);
+    if constexpr (law == DampingLaw::report_frozen) f -= wd[k] * w[k];
     Slot(F + p[k]) += f;
     Slot(F + q[k]) -= f;
   }
 }
 
-// All springs of [first, last): four at a time (one AVX register, two SSE2 registers), then the remainder.
-template <DampingLaw law>
+// All springs of [first, last): four at a time (one AVX register, two SSE2 registers), then the remainder. U0
+// and L0f point at the frozen data of `first`.
+template <DampingLaw law, bool sums = false>
 void add_spring_forces(const Spring* first, const Spring* last, double K, double D, const double* X, const double* V,
-                       double* F) {
+                       double* F, const double* U0 = nullptr, const double* L0f = nullptr,
+                       SpringSums* totals = nullptr) {
   constexpr int lanes = 4;
-  for (; last - first >= lanes; first += lanes) add_spring_batch<law, lanes>(first, K, D, X, V, F);
-  for (; first != last; ++first) add_spring_batch<law, 1>(first, K, D, X, V, F);
+  constexpr bool frozen = law == DampingLaw::projected_frozen || law == DampingLaw::report_frozen;
+  for (; last - first >= lanes; first += lanes) {
+    add_spring_batch<law, sums, lanes>(first, K, D, X, V, F, U0, L0f, totals);
+    if constexpr (frozen) U0 += 4 * lanes, L0f += lanes;
+  }
+  for (; first != last; ++first) {
+    add_spring_batch<law, sums, 1>(first, K, D, X, V, F, U0, L0f, totals);
+    if constexpr (frozen) U0 += 4, L0f += 1;
+  }
 }
 // [spring_force_loop]
 // NOLINTEND(readability-non-const-parameter)
@@ -125,6 +151,10 @@ ForceField::ForceField(const Scene& scene)
   for (int k = 0; k < 3 * n_free; ++k) diagonal_entry_[static_cast<std::size_t>(k)] = entry(k, k);
   diagonal_blocks_.reserve(static_cast<std::size_t>(n_free));
   for (int s = 0; s < n_free; ++s) diagonal_blocks_.push_back(block(s, s));
+  if (scene.has_damping()) {
+    frozen_direction_ = SlotMatrix::Zero(4, static_cast<Eigen::Index>(springs.size()));
+    frozen_length_.assign(springs.size(), 0.0);
+  }
 }
 
 void ForceField::scatter_state(const ConstVectorRef& x, const ConstVectorRef& v) {
@@ -133,8 +163,7 @@ void ForceField::scatter_state(const ConstVectorRef& x, const ConstVectorRef& v)
   if (scene_.has_damping()) V_.topLeftCorner(3, n) = v.reshaped(3, n);
 }
 
-void ForceField::forces(const ConstVectorRef& x, const ConstVectorRef& v, VectorRef f) {
-  scatter_state(x, v);
+void ForceField::spring_pass(bool frozen, Potentials* potentials) {
   F_.setZero();
   // Each family's springs run through the grid row by row. On a large grid one family's sweep would push the
   // first rows' positions and forces out of the cache before the next family came back to them, so the three
@@ -142,6 +171,7 @@ void ForceField::forces(const ConstVectorRef& x, const ConstVectorRef& v, Vector
   // family. A 20 x 20 cloth is a single band.
   const auto& set = scene_.springs();
   const Spring* springs = set.springs.data();
+  const bool projected = scene_.params().damping_model == DampingModel::projected;
   constexpr int springs_per_band = 4096;
   int bands = 1;
   for (const SpringRange& r : set.family) bands = std::max(bands, (r.size() + springs_per_band - 1) / springs_per_band);
@@ -151,23 +181,76 @@ void ForceField::forces(const ConstVectorRef& x, const ConstVectorRef& v, Vector
       if (r.size() == 0) continue;
       const double K = scene_.stiffness(family);
       const double D = scene_.damping(family);
-      const auto at = [&](int band) { return springs + r.begin + std::ptrdiff_t{r.size()} * band / bands; };
-      const Spring* first = at(b);
-      const Spring* last = at(b + 1);
-      if (D == 0.0)
-        add_spring_forces<DampingLaw::none>(first, last, K, D, X_.data(), V_.data(), F_.data());
-      else if (scene_.params().damping_model == DampingModel::projected)
-        add_spring_forces<DampingLaw::projected>(first, last, K, D, X_.data(), V_.data(), F_.data());
-      else
-        add_spring_forces<DampingLaw::report>(first, last, K, D, X_.data(), V_.data(), F_.data());
+      const auto at = [&](int band) { return r.begin + static_cast<std::ptrdiff_t>(r.size()) * band / bands; };
+      const Spring* first = springs + at(b);
+      const Spring* last = springs + at(b + 1);
+      if (!frozen) {
+        if (D == 0.0)
+          add_spring_forces<DampingLaw::none>(first, last, K, D, X_.data(), V_.data(), F_.data());
+        else if (projected)
+          add_spring_forces<DampingLaw::projected>(first, last, K, D, X_.data(), V_.data(), F_.data());
+        else
+          add_spring_forces<DampingLaw::report>(first, last, K, D, X_.data(), V_.data(), F_.data());
+        continue;
+      }
+      SpringSums sums;
+      if (D == 0.0) {
+        add_spring_forces<DampingLaw::none, true>(first, last, K, D, X_.data(), V_.data(), F_.data(), nullptr,
+                                                  nullptr, &sums);
+      } else {
+        const double* U0 = frozen_direction_.data() + 4 * at(b);
+        const double* L0f = frozen_length_.data() + at(b);
+        if (projected)
+          add_spring_forces<DampingLaw::projected_frozen, true>(first, last, K, D, X_.data(), V_.data(), F_.data(),
+                                                                U0, L0f, &sums);
+        else
+          add_spring_forces<DampingLaw::report_frozen, true>(first, last, K, D, X_.data(), V_.data(), F_.data(), U0,
+                                                             L0f, &sums);
+      }
+      potentials->spring += 0.5 * K * sums.stretch;
+      potentials->dissipation += 0.5 * D * sums.dissipation;
+      potentials->terms += static_cast<int>(last - first) * (D == 0.0 ? 1 : 2);
     }
   }
+}
+
+void ForceField::forces(const ConstVectorRef& x, const ConstVectorRef& v, VectorRef f) {
+  scatter_state(x, v);
+  spring_pass(false, nullptr);
   const int n = scene_.free_count();
   f.reshaped(3, n) = F_.topLeftCorner(3, n);
   if (scene_.has_gravity()) {
     const double weight = scene_.params().mass * scene_.params().gravity;
     for (int s = 0; s < n; ++s) f[3 * s + 2] -= weight;
   }
+}
+
+void ForceField::freeze_dampers(const ConstVectorRef& x0) {
+  if (!scene_.has_damping()) return;
+  const int n = scene_.free_count();
+  X_.topLeftCorner(3, n) = x0.reshaped(3, n);
+  const auto& springs = scene_.springs().springs;
+  for (std::size_t k = 0; k < springs.size(); ++k) {
+    const Eigen::Vector4d d = X_.col(springs[k].p) - X_.col(springs[k].q);
+    const double l = d.norm();
+    // A spring with no direction gets none: its frozen damper then exerts no force, as the current one does not.
+    const bool degenerate = l <= degenerate_length_fraction * springs[k].rest_length;
+    frozen_direction_.col(static_cast<Eigen::Index>(k)) = degenerate ? Eigen::Vector4d::Zero() : Eigen::Vector4d(d / l);
+    frozen_length_[k] = l;
+  }
+}
+
+ForceField::Potentials ForceField::frozen_forces(const ConstVectorRef& x, const ConstVectorRef& v, VectorRef f) {
+  scatter_state(x, v);
+  Potentials potentials;
+  spring_pass(true, &potentials);
+  const int n = scene_.free_count();
+  f.reshaped(3, n) = F_.topLeftCorner(3, n);
+  if (scene_.has_gravity()) {
+    const double weight = scene_.params().mass * scene_.params().gravity;
+    for (int s = 0; s < n; ++s) f[3 * s + 2] -= weight;
+  }
+  return potentials;
 }
 
 void ForceField::acceleration(const ConstVectorRef& x, const ConstVectorRef& v, VectorRef a) {
@@ -303,7 +386,10 @@ inline void assign_negated_block(double* values, const std::array<int, 3>& start
 // without its d/dx (the symmetric and definite treatments). With t = 1 - L0/l (clamped at 0 for definite),
 //   -h^2 df_p/dx_p = h^2 K [u u^T + t (I - u u^T)],   -h df_p/dv_p = h D u u^T,
 // so alpha = h^2 K (1 - t) + h D and beta = h^2 K t: six numbers per block instead of two 3x3 matrix products.
-void ForceField::refill_symmetric(double h, bool definite, double* values) {
+// The frozen dampers of the incremental potential add h D u0 u0^T (projected, along the frozen direction) or
+// h D l0 I (report) instead of the h D u u^T in alpha.
+void ForceField::refill_symmetric(double h, bool definite, bool frozen, double* values) {
+  const bool projected = scene_.params().damping_model == DampingModel::projected;
   const auto& set = scene_.springs();
   const double* X = X_.data();
   for (SpringFamily family : all_spring_families) {
@@ -321,11 +407,23 @@ void ForceField::refill_symmetric(double h, bool definite, double* values) {
       const double u[3] = {d[0] * inv_l, d[1] * inv_l, d[2] * inv_l};
       double t = 1.0 - s.rest_length * inv_l;
       if (definite) t = std::max(t, 0.0);
-      const double alpha = degenerate ? 0.0 : h2K * (1.0 - t) + hD, beta = degenerate ? 0.0 : h2K * t;
+      const double alpha = degenerate ? 0.0 : h2K * (1.0 - t) + (frozen ? 0.0 : hD);
+      double beta = degenerate ? 0.0 : h2K * t;
       // The block alpha u u^T + beta I, computed once: +B on the two diagonal blocks, -B off the diagonal.
       const double a0 = alpha * u[0], a1 = alpha * u[1], a2 = alpha * u[2];
-      const double B01 = a0 * u[1], B02 = a0 * u[2], B12 = a1 * u[2];
-      const Block B = {{{a0 * u[0] + beta, B01, B02}, {B01, a1 * u[1] + beta, B12}, {B02, B12, a2 * u[2] + beta}}};
+      double B01 = a0 * u[1], B02 = a0 * u[2], B12 = a1 * u[2];
+      double B00 = a0 * u[0], B11 = a1 * u[1], B22 = a2 * u[2];
+      if (frozen && hD != 0.0 && !degenerate) {
+        if (projected) {
+          const double* u0 = frozen_direction_.col(k).data();
+          const double b0 = hD * u0[0], b1 = hD * u0[1], b2 = hD * u0[2];
+          B00 += b0 * u0[0], B11 += b1 * u0[1], B22 += b2 * u0[2];
+          B01 += b0 * u0[1], B02 += b0 * u0[2], B12 += b1 * u0[2];
+        } else {
+          beta += hD * frozen_length_[static_cast<std::size_t>(k)];
+        }
+      }
+      const Block B = {{{B00 + beta, B01, B02}, {B01, B11 + beta, B12}, {B02, B12, B22 + beta}}};
       const auto& c = spring_blocks_[static_cast<std::size_t>(k)].column_start;
       // Diagonal blocks collect every spring of their particle; an off-diagonal block belongs to one spring
       // alone, so it is assigned, and only the diagonal blocks had to be cleared.
@@ -351,7 +449,7 @@ void ForceField::newton_matrix(const ConstVectorRef& x, const ConstVectorRef& v,
     for (const auto& start : diagonal_blocks_)
       for (int b : start) std::fill_n(values + b, 3, 0.0);
     for (int k : diagonal_entry_) values[k] = m;
-    refill_symmetric(h, treatment == StiffnessTreatment::definite, values);
+    refill_symmetric(h, treatment == StiffnessTreatment::definite, false, values);
     return;
   }
   std::fill_n(values, A.nonZeros(), 0.0);
@@ -363,6 +461,18 @@ void ForceField::newton_matrix(const ConstVectorRef& x, const ConstVectorRef& v,
     add_block(values, c[0], C, 1), add_block(values, c[1], C, 1);
     add_block(values, c[2], C, -1), add_block(values, c[3], C, -1);
   });
+}
+
+void ForceField::frozen_newton_matrix(const ConstVectorRef& x, double h, StiffnessTreatment treatment,
+                                      SparseMatrix& A) {
+  // The frozen dampers do not depend on x, so the spring blocks keep the shape alpha u u^T + beta I of the lean
+  // refill, whatever the damping law: the Hessian of the incremental potential is symmetric.
+  X_.topLeftCorner(3, scene_.free_count()) = x.reshaped(3, scene_.free_count());
+  double* values = A.valuePtr();
+  for (const auto& start : diagonal_blocks_)
+    for (int b : start) std::fill_n(values + b, 3, 0.0);
+  for (int k : diagonal_entry_) values[k] = scene_.params().mass;
+  refill_symmetric(h, treatment == StiffnessTreatment::definite, scene_.has_damping(), values);
 }
 
 }  // namespace cloth

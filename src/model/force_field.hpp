@@ -70,6 +70,27 @@ class ForceField {
   void newton_matrix(const ConstVectorRef& x, const ConstVectorRef& v, double h, StiffnessTreatment treatment,
                      SparseMatrix& A);
 
+  /// Freezes every damper's geometry at the positions x0 (Chapter 4's incremental potential): the projected
+  /// damper's direction u0 and the report damper's length l0. With them the damping force is -dR/dv of the
+  /// quadratic dissipation potential R(v) = 1/2 sum D ((v_p - v_q).u0)^2 (projected) or
+  /// 1/2 sum D l0 |v_p - v_q|^2 (report), which the current-geometry dampers are not. Kept until the next call.
+  void freeze_dampers(const ConstVectorRef& x0);
+
+  /// The two potentials of a state with frozen dampers, in joules and watts.
+  struct Potentials {
+    double spring = 0;       ///< E_spring(x) = 1/2 sum K (l - L0)^2 [J]
+    double dissipation = 0;  ///< R(v), the dissipation potential of the frozen dampers [W]
+    int terms = 0;           ///< how many nonnegative terms the two sums added (their rounding bound)
+  };
+  /// f(x, v) with the dampers frozen by freeze_dampers(), and E_spring(x) and R(v) from the same pass over the
+  /// springs: f = -dE_spring/dx - dR/dv - gravity's m g e_z. Without damping it is forces() plus the energy.
+  Potentials frozen_forces(const ConstVectorRef& x, const ConstVectorRef& v, VectorRef f);
+
+  /// The Newton matrix of the frozen-damper stage equation, A = M + h^2 d^2E_spring/dx^2 + h d^2R/dv^2, the
+  /// Hessian of the incremental potential (symmetric for every damping law); `treatment` acts on the spring part:
+  /// exact and symmetric keep it, definite drops compressed springs' transverse term. Refilled in pattern().
+  void frozen_newton_matrix(const ConstVectorRef& x, double h, StiffnessTreatment treatment, SparseMatrix& A);
+
  private:
   // Where one spring's four 3x3 blocks (pp, qq, pq, qp) start in the value array, per block column; -1 when a
   // block touches a pinned particle (pinned particles are not unknowns, so those blocks do not exist).
@@ -79,9 +100,13 @@ class ForceField {
   void scatter_state(const ConstVectorRef& x, const ConstVectorRef& v);
   template <class AddBlocks>
   void for_each_spring_block(StiffnessTreatment treatment, AddBlocks&& add);
-  // The Newton matrix's spring blocks when each is alpha u u^T + beta I (see force_field.cpp); expects
-  // scatter_state() to have run and the mass diagonal to be in `values`.
-  void refill_symmetric(double h, bool definite, double* values);
+  // The Newton matrix's spring blocks when each is alpha u u^T + beta I (see force_field.cpp), plus the frozen
+  // damper's h D u0 u0^T or h D l0 I when `frozen`; expects scatter_state() to have run and the mass diagonal to
+  // be in `values`.
+  void refill_symmetric(double h, bool definite, bool frozen, double* values);
+  // The spring and damping forces of every family into F_ (cleared first), with the dampers frozen or not; the
+  // frozen pass also sums the potentials.
+  void spring_pass(bool frozen, Potentials* potentials);
 
   // One column (x, y, z, 0) per slot: a particle is one 4-double vector, so a spring reads and writes its two
   // particles with whole-vector loads and stores instead of three scalars each (see force_field.cpp).
@@ -95,6 +120,8 @@ class ForceField {
   std::vector<SpringBlocks> spring_blocks_;
   std::vector<int> diagonal_entry_;  // value index of entry (k, k), for the mass term
   std::vector<std::array<int, 3>> diagonal_blocks_;  // column starts of each free particle's diagonal block
+  SlotMatrix frozen_direction_;        // u0 of every spring, (x, y, z, 0), when the scene is damped
+  std::vector<double> frozen_length_;  // l0 of every spring, when the scene is damped
 };
 
 }  // namespace cloth

@@ -10,11 +10,11 @@ namespace cloth {
 
 // [jacobian_default]
 // Without --jacobian, the most exact matrix the chosen solver can take: CG needs a symmetric positive definite
-// matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry), LDU and LU take the exact one. An explicit
-// incompatible choice is refused by validate(NewtonSettings) with exit status 2.
-StiffnessTreatment default_treatment(LinearSolverKind solver, bool damped) {
+// matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry in the residual form), LDU and LU take the
+// exact one. An explicit incompatible choice is refused by validate(NewtonSettings) with exit status 2.
+StiffnessTreatment default_treatment(LinearSolverKind solver, bool nonsymmetric) {
   if (solver == LinearSolverKind::cg) return StiffnessTreatment::definite;
-  if (solver == LinearSolverKind::ldlt && damped) return StiffnessTreatment::symmetric;
+  if (solver == LinearSolverKind::ldlt && nonsymmetric) return StiffnessTreatment::symmetric;
   return StiffnessTreatment::exact;
 }
 // [jacobian_default]
@@ -33,7 +33,7 @@ void NewtonFlags::add_to(CommandLine& cli) {
                 });
   cli.add_value("--linear-solver", linear_solvers().accepted("|"),
                 "block LDL^T, block LDU, block-Jacobi-preconditioned CG, Eigen's pivoting sparse LU, or automatic "
-                "(the default: ldu for the exact Jacobian of a damped cloth, ldlt otherwise)",
+                "(the default: ldu for the exact Jacobian of a damped cloth in the residual form, ldlt otherwise)",
                 [this](const std::string& s) {
                   newton_.solver = linear_solvers().parse(s);
                   note("--linear-solver");
@@ -45,13 +45,23 @@ void NewtonFlags::add_to(CommandLine& cli) {
                   newton_.tolerance = t;
                   note("--newton-tol");
                 });
-  cli.add_value("--newton-max-iter", "N", "Newton iterations before a step or stage fails (default 20)",
+  cli.add_value("--newton-max-iter", "N",
+                "Newton iterations before a step or stage fails (default " +
+                    std::to_string(NewtonSettings{}.max_iterations) + ")",
                 [this](const std::string& s) {
                   const long long n = parse_integer(s);
                   if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
                   newton_.max_iterations = static_cast<int>(n);
                   max_iterations_given_ = true;
                   note("--newton-max-iter");
+                });
+  cli.add_value("--line-search", line_searches().accepted("|"),
+                "potential (default): full and modified Newton minimise the incremental potential, dampers frozen "
+                "at the free-flight position, with backtracking on it; residual: the stage equation as it is, with "
+                "backtracking on |r| (Chapter 4)",
+                [this](const std::string& s) {
+                  newton_.line_search = line_searches().parse(s);
+                  note("--line-search");
                 });
   cli.add_value("--jacobian", stiffness_treatments().accepted("|"),
                 "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
@@ -66,13 +76,15 @@ NewtonSettings NewtonFlags::settings_for(const Scene& scene) const {
   if (newton_.variant == NewtonVariant::one && max_iterations_given_ && newton_.max_iterations != 1)
     throw InputError("--newton-max-iter: --newton one takes exactly one iteration; leave --newton-max-iter out");
   NewtonSettings s = newton_;
-  s.treatment = jacobian_ ? *jacobian_ : default_treatment(s.solver, scene.has_damping());
+  // The exact matrix is non-symmetric only where the damper's d/dx enters it: a damped cloth in the residual
+  // form (the potential's Hessian, with the dampers frozen, is symmetric).
+  s.treatment = jacobian_ ? *jacobian_ : default_treatment(s.solver, scene.has_damping() && !s.minimises());
   try {
     validate(s, scene);
   } catch (const InputError& e) {
     throw InputError(std::string("--newton ") + newton_variants().name(s.variant) + " --linear-solver " +
                      linear_solvers().name(s.solver) + " --jacobian " + stiffness_treatments().name(s.treatment) +
-                     ": " + e.what());
+                     " --line-search " + line_searches().name(s.line_search) + ": " + e.what());
   }
   return s;
 }
@@ -82,7 +94,8 @@ KeyValues newton_run_lines(const NewtonSettings& resolved) {
           {"linear_solver", linear_solvers().name(resolved.solver)},
           {"jacobian", stiffness_treatments().name(resolved.treatment)},
           {"newton_tol", format_number(resolved.tolerance, 10)},
-          {"newton_max_iter", std::to_string(resolved.max_iterations)}};
+          {"newton_max_iter", std::to_string(resolved.max_iterations)},
+          {"line_search", line_searches().name(resolved.line_search)}};
 }
 
 namespace {

@@ -1,5 +1,5 @@
 // The method flags of the model page parsed in one place: Newton's (--newton, --linear-solver, --jacobian,
-// --newton-tol, --newton-max-iter) for every program that runs an implicit method, with the one default rule for
+// --newton-tol, --newton-max-iter, --line-search) for every program that runs an implicit method, with the one default rule for
 // the Newton matrix, and the iterative methods' (--iterations, --substeps) for local/global and XPBD.
 #pragma once
 
@@ -14,17 +14,18 @@
 namespace cloth {
 
 /// Without --jacobian, the most exact Newton matrix the chosen solver can take: CG needs a symmetric positive
-/// definite matrix (definite), LDL^T a symmetric one (symmetric, when the damper's d/dx would break symmetry), LDU
+/// definite matrix (definite), LDL^T a symmetric one (symmetric, when the damper's d/dx would break symmetry:
+/// `nonsymmetric` is true for a damped cloth in the residual form), LDU
 /// and LU take the exact one. An explicit incompatible choice is refused by NewtonFlags::settings_for.
-StiffnessTreatment default_treatment(LinearSolverKind solver, bool damped);
+StiffnessTreatment default_treatment(LinearSolverKind solver, bool nonsymmetric);
 
-/// Newton's five flags. Usage:
+/// Newton's six flags. Usage:
 ///   NewtonFlags newton;
 ///   newton.add_to(cli);                                          // before cli.parse
 ///   const NewtonSettings s = newton.settings_for(Scene(params));  // after it: the default rule, validated
 class NewtonFlags {
  public:
-  /// Adds --newton, --linear-solver, --newton-tol, --newton-max-iter and --jacobian to `cli`.
+  /// Adds --newton, --linear-solver, --newton-tol, --newton-max-iter, --line-search and --jacobian to `cli`.
   void add_to(CommandLine& cli);
 
   /// The settings the flags chose, the Newton matrix's treatment by default_treatment() unless --jacobian chose
@@ -36,7 +37,7 @@ class NewtonFlags {
   [[nodiscard]] const NewtonSettings& given() const { return newton_; }
   /// The treatment --jacobian chose, if it was given.
   [[nodiscard]] const std::optional<StiffnessTreatment>& jacobian() const { return jacobian_; }
-  /// The first of the five flags given on the command line, or empty: a program refuses it for a method that
+  /// The first of the six flags given on the command line, or empty: a program refuses it for a method that
   /// has no Newton iteration.
   [[nodiscard]] const std::string& first_given() const { return first_given_; }
 
@@ -49,7 +50,7 @@ class NewtonFlags {
 };
 
 /// run.txt's lines for Newton's settings (resolved: the solver the automatic choice picked): newton,
-/// linear_solver, jacobian, newton_tol, newton_max_iter.
+/// linear_solver, jacobian, newton_tol, newton_max_iter, line_search.
 KeyValues newton_run_lines(const NewtonSettings& resolved);
 
 /// --iterations and --substeps, the settings of the registry's iterative rows: local/global's iterations per
