@@ -426,7 +426,8 @@ void ladder(const std::string& out, const std::string& command) {
 std::vector<std::string> curtain_full_only() { return {"curtain_ladder.md", "curtain_ladder.dat"}; }
 
 std::vector<std::string> curtain_outputs(bool full) {
-  std::vector<std::string> files = {"curtain_scenes.md", "curtain_levels.md", "rotation.md", "rotation.dat"};
+  std::vector<std::string> files = {"curtain_scenes.md", "curtain_levels.md", "curtain_motion.dat", "rotation.md",
+                                    "rotation.dat"};
   for (const CurtainScene& c : scenes)
     for (const std::string& f : {"curtain_" + c.tag + ".md", "curtain_" + c.tag + ".dat", "curtain_edge_" + c.tag + ".dat",
                                  "curtain_flags_" + c.tag + ".md"})
@@ -445,6 +446,11 @@ void curtain_study(bool quick, const std::string& out, const std::string& comman
     write_runs_data(out, results.back());
   }
   write_table_fragment(out + "/curtain_scenes.md", scenes_table(results), command);
+  std::string motion = "# scene T motion_at_T motion_over_frames reference_first_minimum\n";
+  for (const SceneResult& r : results)
+    motion += format("%s %g %.6e %.6e %.6e\n", r.scene.tag.c_str(), r.scene.T, r.motion.at_end, r.motion.over_frames,
+                     r.reference_minimum);
+  write_text(out, "curtain_motion.dat", motion);
   write_table_fragment(out + "/curtain_levels.md", levels_table(results), command);
   rotation_study(out, command);
   if (!quick) ladder(out, command);

@@ -2,7 +2,7 @@
 // explicit methods' stable step, predicted from the lattice and measured; the practitioner's question (what
 // each method costs to reach 1 cm and 1 mm at T); and the map of the cheapest method over resolution and
 // stiffness, predicted by a cost model and checked by measurement where affordable. --quick is the reduced sweep
-// the plots target runs; without it the full sweep runs.
+// the plots target runs; without it the full sweep runs. --curtain runs the study of cloth that moves instead.
 #include "curtain.hpp"
 #include "study.hpp"
 
@@ -482,11 +482,7 @@ std::vector<std::string> practitioner_files(const std::string& tag) {
 }
 
 // What only the full sweep writes: the practitioner's question over a whole second.
-std::vector<std::string> full_run_only() {
-  std::vector<std::string> files = practitioner_files("T1");
-  for (const std::string& f : ch10::curtain_full_only()) files.push_back(f);
-  return files;
-}
+std::vector<std::string> full_run_only() { return practitioner_files("T1"); }
 
 // Every file a run writes (the tables are the page's fragments).
 std::vector<std::string> outputs(bool quick, bool curtain_only) {
@@ -498,10 +494,18 @@ std::vector<std::string> outputs(bool quick, bool curtain_only) {
                                     "step_cost.md",     "step_cost.dat",       "map_1cm.md",
                                     "map_1mm.md",       "map.dat",             "map_winners.dat"};
   for (const std::string& f : practitioner_files("T0.5")) files.push_back(f);
-  for (const std::string& f : ch10::curtain_outputs(false)) files.push_back(f);
   if (!quick)
     for (const std::string& f : full_run_only()) files.push_back(f);
   return files;
+}
+
+// The files of the other modes, removed before a run so that none is left stale beside this run's.
+std::vector<std::string> other_outputs(bool quick, bool curtain_only) {
+  std::vector<std::string> all = outputs(false, false), mine = outputs(quick, curtain_only), others;
+  for (const std::string& f : ch10::curtain_outputs(true)) all.push_back(f);
+  for (const std::string& f : all)
+    if (std::find(mine.begin(), mine.end(), f) == mine.end()) others.push_back(f);
+  return others;
 }
 
 }  // namespace
@@ -514,15 +518,16 @@ int main(int argc, char** argv) {
   cli.use_common({"--out"});
   Settings s;
   cli.add_switch("--quick", "a reduced sweep for the plots target (under a minute)", [&] { s.quick = true; });
-  cli.add_switch("--curtain", "only the study of cloth that moves", [&] { s.curtain_only = true; });
+  cli.add_switch("--curtain", "instead, the study of cloth that moves (the curtain)", [&] { s.curtain_only = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    prepare_outputs(opt.run.out_dir, outputs(s.quick, s.curtain_only),
-                    s.quick ? full_run_only() : std::vector<std::string>{});
+    prepare_outputs(opt.run.out_dir, outputs(s.quick, s.curtain_only), other_outputs(s.quick, s.curtain_only));
     s.out = opt.run.out_dir;
     s.command = reader_command(argc, argv);
-    ch10::curtain_study(s.quick, s.out, s.command);
-    if (s.curtain_only) return 0;
+    if (s.curtain_only) {
+      ch10::curtain_study(s.quick, s.out, s.command);
+      return 0;
+    }
     write_table_fragment(s.out + "/preset.md", preset_table(), s.command);
     // [methods]
     const std::vector<double> stiffnesses = {1e3, 1e4, 1e5, 1e6};
