@@ -68,13 +68,14 @@ struct MethodRow {
   std::string key;  ///< as ch10::make_method takes it
   std::vector<double> steps;
   std::size_t quick_steps = 3;  ///< how many of the steps the quick run tries (full Newton: seconds per run)
+  bool finer_grids = true;      ///< whether the full run's finer grids try it (full Newton: minutes per run)
 };
 const std::vector<double> frame_steps = {1.0 / 30, 1.0 / 60, 1.0 / 120};
 const std::vector<MethodRow> methods = {
     {"symplectic_euler", {}},
     {"rk4", {}},
     {"ie_1newton_cg", frame_steps},
-    {"ie_newton_cg", frame_steps, 1},
+    {"ie_newton_cg", frame_steps, 1, false},
     {"local_global_10", frame_steps},
 };
 // [curtain_methods]
@@ -188,6 +189,7 @@ SceneResult measure_scene(const CurtainScene& c, int n, bool quick, bool with_me
   r.reference_minimum = first_minimum_time(r.t, r.edge);
   if (!with_methods) return r;
   for (const MethodRow& m : methods) {
+    if (n > 20 && !m.finer_grids) continue;
     std::vector<double> steps = m.steps;
     if (quick && steps.size() > m.quick_steps) steps.resize(m.quick_steps);
     if (steps.empty()) {  // a whole number of steps per frame, each below 95 % of the stable step
@@ -285,7 +287,8 @@ MarkdownTable levels_table(const std::vector<SceneResult>& results) {
         if (!is_explicit(run.method) && (best_implicit == nullptr || run.seconds < best_implicit->seconds))
           best_implicit = &run;
       }
-      const std::string name = level.name + (level.name[0] == 'p' ? ": " + metres(level.metres) : "");
+      const std::string name =
+          level.name[0] == 'p' ? format("%s: %s", level.name.c_str(), metres(level.metres).c_str()) : level.name;
       const auto describe = [](const CurtainRun* run) {
         return run == nullptr ? std::string("none") : label(run->method) + ", h = " + step_text(run->h);
       };
@@ -405,8 +408,8 @@ void ladder(const std::string& out, const std::string& command) {
   for (const CurtainScene& c : scenes) {
     if (c.tag == "corners") continue;
     for (int n : {20, 40, 80}) {
-      // Beyond 20 x 20 with the quick run's settings (reference at 1e-8, full Newton at 1/30 s only): a finer grid's
-      // reference costs (n / 20)^3 times as much.
+      // Beyond 20 x 20 with the quick run's settings (reference at 1e-8) and without full Newton: a finer grid's
+      // runs cost up to (n / 20)^3 times as much.
       const SceneResult r = measure_scene(c, n, n > 20, true);
       for (const CurtainRun& run : r.runs) {
         t.add_row({c.title, format("%d x %d", n, n), metres(r.motion.over_frames), format("%lld", r.reference.steps),
@@ -421,9 +424,40 @@ void ladder(const std::string& out, const std::string& command) {
   write_text(out, "curtain_ladder.dat", dat);
 }
 
+// [sensitivity]
+/// How fast two nearby curtains separate: references at 1e-10 and 1e-12 followed past the horizon, to 1 s.
+void sensitivity(const std::string& out, const std::string& command) {
+  const Scene scene(scene_params(scenes[0], 20));
+  ForceField field(scene);
+  const double T = 1;
+  const int frames = 60;
+  std::vector<ReferenceTrajectory> refs;
+  for (double tolerance : {1e-10, 1e-12})
+    refs.push_back(reference_trajectory(field, scene.initial_positions(), scene.initial_velocities(), T, frames,
+                                        tolerance, &interrupt_flag()));
+  throw_if_interrupted();
+  std::vector<std::string> header = {"t [s]"}, row = {"largest distance [m]"};
+  std::string dat = "# t largest_distance between the curtain's references at 1e-10 and 1e-12\n";
+  for (int k = 0; k <= frames; ++k) {
+    const double d = largest_distance(refs[0].frames[k].positions, refs[1].frames[k].positions);
+    dat += format("%.6f %.6e\n", refs[0].frames[k].t, d);
+    if (k > 0 && k % 6 == 0) {
+      header.push_back(format("%.1f", refs[0].frames[k].t));
+      row.push_back(format("%.1e", d));
+    }
+  }
+  MarkdownTable t(header, std::string(header.size(), 'r'));
+  t.add_row(row);
+  write_table_fragment(out + "/curtain_sensitivity.md", t, command);
+  write_text(out, "curtain_sensitivity.dat", dat);
+}
+// [sensitivity]
+
 }  // namespace
 
-std::vector<std::string> curtain_full_only() { return {"curtain_ladder.md", "curtain_ladder.dat"}; }
+std::vector<std::string> curtain_full_only() {
+  return {"curtain_ladder.md", "curtain_ladder.dat", "curtain_sensitivity.md", "curtain_sensitivity.dat"};
+}
 
 std::vector<std::string> curtain_outputs(bool full) {
   std::vector<std::string> files = {"curtain_scenes.md", "curtain_levels.md", "curtain_motion.dat", "rotation.md",
@@ -442,7 +476,7 @@ void curtain_study(bool quick, const std::string& out, const std::string& comman
   for (const CurtainScene& c : scenes) {
     results.push_back(measure_scene(c, 20, quick, true));
     write_table_fragment(out + "/curtain_" + c.tag + ".md", runs_table(results.back()), command);
-    write_text_fragment(out + "/curtain_flags_" + c.tag + ".md", "`" + scene_flags(c, 20) + "`");
+    write_text_fragment(out + "/curtain_flags_" + c.tag + ".md", format("`%s`", scene_flags(c, 20).c_str()));
     write_runs_data(out, results.back());
   }
   write_table_fragment(out + "/curtain_scenes.md", scenes_table(results), command);
@@ -453,7 +487,10 @@ void curtain_study(bool quick, const std::string& out, const std::string& comman
   write_text(out, "curtain_motion.dat", motion);
   write_table_fragment(out + "/curtain_levels.md", levels_table(results), command);
   rotation_study(out, command);
-  if (!quick) ladder(out, command);
+  if (!quick) {
+    sensitivity(out, command);
+    ladder(out, command);
+  }
 }
 
 }  // namespace ch10
