@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 
 using namespace cloth;
 using ch10::format;
@@ -159,7 +158,9 @@ CurtainRun run_method(const Scene& scene, const std::string& key, double h, doub
 }
 // [curtain_run]
 
-SceneResult measure_scene(const CurtainScene& c, int n, bool quick, bool with_methods) {
+/// The scene's reference, its measures and every method's runs on the n x n grid; `quick`: the quick run's
+/// settings (a looser reference, unchecked, and fewer full Newton runs).
+SceneResult measure_scene(const CurtainScene& c, int n, bool quick) {
   SceneResult r;
   r.scene = c;
   r.n = n;
@@ -187,7 +188,6 @@ SceneResult measure_scene(const CurtainScene& c, int n, bool quick, bool with_me
   for (const Frame& f : r.reference.frames) r.t.push_back(f.t);
   r.edge = free_edge_height(scene.grid(), r.reference.frames);
   r.reference_minimum = first_minimum_time(r.t, r.edge);
-  if (!with_methods) return r;
   for (const MethodRow& m : methods) {
     if (n > 20 && !m.finer_grids) continue;
     std::vector<double> steps = m.steps;
@@ -410,7 +410,7 @@ void ladder(const std::string& out, const std::string& command) {
     for (int n : {20, 40, 80}) {
       // Beyond 20 x 20 with the quick run's settings (reference at 1e-8) and without full Newton: a finer grid's
       // runs cost up to (n / 20)^3 times as much.
-      const SceneResult r = measure_scene(c, n, n > 20, true);
+      const SceneResult r = measure_scene(c, n, n > 20);
       for (const CurtainRun& run : r.runs) {
         t.add_row({c.title, format("%d x %d", n, n), metres(r.motion.over_frames), format("%lld", r.reference.steps),
                    label(run.method), step_text(run.h), format("%.3g", run.seconds),
@@ -474,7 +474,7 @@ std::vector<std::string> curtain_outputs(bool full) {
 void curtain_study(bool quick, const std::string& out, const std::string& command) {
   std::vector<SceneResult> results;
   for (const CurtainScene& c : scenes) {
-    results.push_back(measure_scene(c, 20, quick, true));
+    results.push_back(measure_scene(c, 20, quick));
     write_table_fragment(out + "/curtain_" + c.tag + ".md", runs_table(results.back()), command);
     write_text_fragment(out + "/curtain_flags_" + c.tag + ".md", format("`%s`", scene_flags(c, 20).c_str()));
     write_runs_data(out, results.back());
