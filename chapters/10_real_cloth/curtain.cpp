@@ -263,7 +263,7 @@ MarkdownTable runs_table(const SceneResult& r) {
       phase = std::isnan(run.minimum) ? "after T"
                                       : format("%.3f s (%+.3f)", run.minimum, run.minimum - r.reference_minimum);
     t.add_row({label(run.method), step_text(run.h), format("%.3g", run.seconds), metres(run.error.at_end),
-               metres(run.error.over_frames), format("%.1f %%", 100 * run.energy_lost), format("%.2g", run.strain),
+               metres(run.error.over_frames), format("%.1f %%", std::abs(run.energy_lost) < 5e-4 ? 0.0 : 100 * run.energy_lost), format("%.2g", run.strain),
                phase, verdict_cell(run, r.motion.over_frames, 1e-2), verdict_cell(run, r.motion.over_frames, 1e-3)});
   }
   return t;
