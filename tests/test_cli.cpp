@@ -99,6 +99,8 @@ std::vector<BadInput> shared_flag_cases() {
       {{"--spacing", "inf"}, {"--spacing", "finite"}},
       {{"--dt", "-inf"}, {"--dt", "finite"}},
       {{"--v0", "inf"}, {"--v0", "finite"}},
+      {{"--swing", "fast"}, {"--swing", "expected a number"}},
+      {{"--swing", "-inf"}, {"--swing", "finite"}},
       {{"--K", "0"}, {"--K", "> 0"}},
       {{"--K", "-50"}, {"--K", "> 0"}},
       {{"--spacing", "0"}, {"--spacing", "> 0"}},
@@ -228,7 +230,8 @@ TEST_CASE("unknown method and tableau names list what is accepted") {
 TEST_CASE("ch01_springs: bad input gives status 2, one line naming the flag, nothing written") {
   // ch01 is an experiment program that takes the scene flags it uses and no run flags: the cases of those flags,
   // and each flag it does not take refused as unknown.
-  const std::vector<std::string> unused = {"--damping", "--damping-model", "--v0", "--dt", "--t-end", "--frames"};
+  const std::vector<std::string> unused = {"--damping", "--damping-model", "--v0", "--swing", "--dt", "--t-end",
+                                           "--frames"};
   std::vector<BadInput> cases;
   for (const BadInput& c : shared_flag_cases())
     if (std::find(unused.begin(), unused.end(), c.args.front()) == unused.end()) cases.push_back(c);

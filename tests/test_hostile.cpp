@@ -397,6 +397,9 @@ TEST_CASE("hostile flags: given twice, too small to represent, beyond what the m
       {"ch02_explicit_euler", {"--v0", "1e200"},
        "--v0: 1e+200 m/s carries the cloth 2e+200 m in --t-end, too far to square in a double; expected |v0| T below "
        "1e149 m"},
+      {"ch02_explicit_euler", {"--swing", "1e200"},
+       "--swing: 1e+200 rad/s carries the cloth 3.8e+200 m in --t-end, too far to square in a double; expected |v0| T "
+       "below 1e149 m"},
       {"ch03_runge_kutta", {"--spacing", "1e200"},
        "--spacing: 1e+200 makes the cloth 2.68701e+201 m wide, too large to square in a double; expected a cloth "
        "narrower than 1e149 m"},

@@ -369,12 +369,12 @@ TEST_CASE("ch01_springs --help lists the common flags it takes and no run flag")
     CAPTURE(flag);
     CHECK(contains(help.out, flag));
   }
-  for (const char* flag : {"--dt", "--t-end", "--frames", "--v0", "--damping"}) {
+  for (const char* flag : {"--dt", "--t-end", "--frames", "--v0", "--swing", "--damping"}) {
     CAPTURE(flag);
     CHECK(!contains(help.out, flag));
   }
   const ProgramRun single = folder.run("ch02_explicit_euler", {"--help"});
-  for (const char* flag : {"--mass m", "--dt h", "--t-end T", "--frames n", "--v0 vz", "--damping D"}) {
+  for (const char* flag : {"--mass m", "--dt h", "--t-end T", "--frames n", "--v0 vz", "--swing w", "--damping D"}) {
     CAPTURE(flag);
     CHECK(contains(single.out, flag));
   }

@@ -9,6 +9,7 @@
 #include "integrators/simulate.hpp"
 #include "model/report_cases.hpp"
 
+#include <Eigen/Geometry>
 #include <memory>
 #include <random>
 #include <set>
@@ -157,6 +158,51 @@ TEST_CASE("a free cloth's centre of mass moves exactly as the stepper moves one 
     CHECK(got.y() == doctest::Approx(expected.y()).epsilon(1e-11));
     CHECK(got.z() == doctest::Approx(expected.z()).epsilon(1e-11));
   }
+}
+
+TEST_CASE("--swing w starts a rigid turn about the edge j = N-1: v = v0 e_z - w e_x x (r - r_edge)") {
+  // docs/model.md: the turn is about the line y = (N-1) d, z = 0, along x, and w > 0 lifts the far edge (y < y_edge),
+  // so its angular velocity is -w e_x (right-hand rule). Written as the cross product, independently
+  // of the library's z-only formula; a rigid motion stretches no spring at first order, so with the edge pinned
+  // (its particles at rest on the axis) every spring's length rate (x_p - x_q) . (v_p - v_q) / l is zero.
+  for (const double v0 : {0.0, -1.5}) {
+    CAPTURE(v0);
+    SceneParams p = params(5, 4, PinSet::edge);
+    p.initial_velocity_z = v0;
+    p.initial_swing = 3.0;
+    const Scene scene(p);
+    const Vector x = scene.initial_positions(), v = scene.initial_velocities();
+    const Eigen::Vector3d axis(-1, 0, 0), on_axis(0, (p.grid.N - 1) * p.grid.d, 0);
+    for (int s = 0; s < scene.free_count(); ++s) {
+      const Eigen::Vector3d expected =
+          Eigen::Vector3d(0, 0, v0) + p.initial_swing * axis.cross(Eigen::Vector3d(x.segment<3>(3 * s)) - on_axis);
+      CHECK((v.segment<3>(3 * s) - expected).norm() <= 1e-14);
+    }
+    Vector all_x(3 * scene.particle_count()), all_v = Vector::Zero(3 * scene.particle_count());
+    scene.all_positions(x, all_x);
+    for (int s = 0; s < scene.free_count(); ++s) all_v.segment<3>(3 * scene.particle_of_slot(s)) = v.segment<3>(3 * s);
+    if (v0 != 0) continue;  // a uniform v0 does stretch the springs to the pinned edge
+    int springs = 0;
+    for (const Spring& spring : scene.springs().springs) {
+      const int a = scene.particle_of_slot(spring.p), b = scene.particle_of_slot(spring.q);
+      const double rate = (all_x.segment<3>(3 * a) - all_x.segment<3>(3 * b)).dot(all_v.segment<3>(3 * a) -
+                                                                                   all_v.segment<3>(3 * b));
+      CHECK(std::abs(rate) <= 1e-14);
+      ++springs;
+    }
+    CHECK(springs > 20);
+  }
+  // The far edge j = 0 moves at w (N-1) d, down for w < 0; the particles on the edge's line do not move.
+  SceneParams p = params(3, 6, PinSet::none);
+  p.initial_velocity_z = 0;
+  p.initial_swing = -2.0;
+  const Scene scene(p);
+  const Vector v = scene.initial_velocities();
+  CHECK(v[3 * scene.slot(p.grid.particle(1, 0)) + 2] == doctest::Approx(-2.0 * 5 * 0.1).epsilon(1e-14));
+  CHECK(v[3 * scene.slot(p.grid.particle(1, 2)) + 2] == doctest::Approx(-2.0 * 3 * 0.1).epsilon(1e-14));
+  CHECK(v[3 * scene.slot(p.grid.particle(1, 5)) + 2] == 0.0);
+  p.initial_swing = std::nan("");
+  CHECK_THROWS_AS(validate(p), InputError);
 }
 
 TEST_CASE("the report's cases are (50, 0), (200, 0), (200, 20), named as their folders, and change only K and D") {

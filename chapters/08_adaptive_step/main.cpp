@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
                   "Chapter 8: adaptive step size from an embedded Runge-Kutta pair on the report's cloth.");
   // Every common flag but --dt: the step is chosen by error control.
   cli.use_common({"--grid", "--spacing", "--mass", "--K", "--K-flexion", "--damping", "--damping-model", "--springs",
-                  "--pins", "--v0", "--t-end", "--frames", "--out"});
+                  "--pins", "--v0", "--swing", "--t-end", "--frames", "--out"});
   std::string pair_names;
   for (const Method* m : methods_of(MethodFamily::embedded_runge_kutta))
     pair_names += (pair_names.empty() ? "" : ", ") + m->name;

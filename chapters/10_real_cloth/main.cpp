@@ -2,7 +2,8 @@
 // explicit methods' stable step, predicted from the lattice and measured; the practitioner's question (what
 // each method costs to reach 1 cm and 1 mm at T); and the map of the cheapest method over resolution and
 // stiffness, predicted by a cost model and checked by measurement where affordable. --quick is the reduced sweep
-// the plots target runs; without it the full sweep runs.
+// the plots target runs; without it the full sweep runs. --curtain runs the study of cloth that moves instead.
+#include "curtain.hpp"
 #include "study.hpp"
 
 #include "analysis/fastest_modes.hpp"
@@ -26,6 +27,7 @@ namespace {
 
 struct Settings {
   bool quick = false;
+  bool curtain_only = false;  ///< only the study of cloth that moves (curtain.cpp)
   std::string out;
   std::string command;  ///< what a reader types to measure the tables again (reader_command)
 };
@@ -131,28 +133,15 @@ void refinement(const Settings& s) {
 // ---------------------------------------------------------------------------------------------------------------
 // The explicit stable step: predicted from the lattice, from the finite cloth's spectrum, and measured.
 
-bool stays_bounded(const Scene& scene, const std::string& method, double h, int steps) {
-  ForceField field(scene);
-  auto stepper = ch10::make_method(method, field);
-  Vector x = scene.initial_positions(), v = scene.initial_velocities();
-  for (Eigen::Index k = 0; k < x.size(); ++k) x[k] += 1e-6 * std::sin(1.7 * static_cast<double>(k));  // seed all modes
-  for (int k = 0; k < steps; ++k) {
-    throw_if_interrupted();
-    stepper->step(h, x, v);
-    if (!x.allFinite() || (x - scene.initial_positions()).cwiseAbs().maxCoeff() > 1.0) return false;
-  }
-  return true;
-}
-
 // [stable_step]
 // Bisection (in log h) between half and twice the predicted step: `halvings` bisections leave the answer within
 // a factor 4^(1/2^halvings), 2 % after 6.
 double measured_stable_step(const Scene& scene, const std::string& method, double predicted, int halvings, int steps) {
   double stable = 0.5 * predicted, unstable = 2 * predicted;
-  if (!stays_bounded(scene, method, stable, steps) || stays_bounded(scene, method, unstable, steps)) return NAN;
+  if (!ch10::stays_bounded(scene, method, stable, steps) || ch10::stays_bounded(scene, method, unstable, steps)) return NAN;
   for (int k = 0; k < halvings; ++k) {
     const double mid = std::sqrt(stable * unstable);
-    (stays_bounded(scene, method, mid, steps) ? stable : unstable) = mid;
+    (ch10::stays_bounded(scene, method, mid, steps) ? stable : unstable) = mid;
   }
   return stable;
 }
@@ -270,12 +259,6 @@ const Measurement* cheapest(const std::vector<Measurement>& rows, const std::str
   return best;
 }
 
-std::string h_text(double h) {
-  const double per_second = 1 / h;
-  if (std::abs(per_second - std::round(per_second)) < 1e-6 * per_second) return format("1/%.0f", per_second);
-  return format("%.3g", h);
-}
-
 void write_curves(const Settings& s, const Curves& c, const std::string& tag) {
   std::string dat = "# method h steps cpu_seconds error_at_T rhs factorizations linear_solves cg_iterations "
                     "newton_iterations status (one block per method)\n";
@@ -304,7 +287,7 @@ void practitioner(const Settings& s, const Curves& c, const std::vector<std::str
     for (double tol : {1e-2, 1e-3}) {
       const Measurement* m = cheapest(c.rows, method, tol);
       for (const std::string& cell : m == nullptr ? std::vector<std::string>{"-", "-", "-", "-"}
-                                                  : std::vector<std::string>{h_text(m->h), format("%lld", m->steps),
+                                                  : std::vector<std::string>{ch10::step_text(m->h), format("%lld", m->steps),
                                                                              format("%.3g", m->seconds),
                                                                              format("%.2g", m->error)})
         row.push_back(cell);
@@ -332,7 +315,7 @@ void practitioner(const Settings& s, const Curves& c, const std::vector<std::str
     }
     const auto run = [](const Measurement* m) {
       return format("%s at h = %s (%lld steps), %.3g s, error %.2g m", ch10::label(m->method).c_str(),
-                    h_text(m->h).c_str(), m->steps, m->seconds, m->error);
+                    ch10::step_text(m->h).c_str(), m->steps, m->seconds, m->error);
     };
     const std::string accuracy = tol == 1e-2 ? "1 cm" : "1 mm";
     std::string sentence;
@@ -502,7 +485,8 @@ std::vector<std::string> practitioner_files(const std::string& tag) {
 std::vector<std::string> full_run_only() { return practitioner_files("T1"); }
 
 // Every file a run writes (the tables are the page's fragments).
-std::vector<std::string> outputs(bool quick) {
+std::vector<std::string> outputs(bool quick, bool curtain_only) {
+  if (curtain_only) return ch10::curtain_outputs(!quick);
   std::vector<std::string> files = {"preset.md",        "stable_step.md",      "stable_step_agreement.md",
                                     "stable_step.dat",  "practitioner_summary.txt", "curves_K1000.dat",
                                     "curves_K10000.dat", "curves_K100000.dat", "curves_K1e+06.dat",
@@ -515,6 +499,15 @@ std::vector<std::string> outputs(bool quick) {
   return files;
 }
 
+// The files of the other modes, removed before a run so that none is left stale beside this run's.
+std::vector<std::string> other_outputs(bool quick, bool curtain_only) {
+  std::vector<std::string> all = outputs(false, false), mine = outputs(quick, curtain_only), others;
+  for (const std::string& f : ch10::curtain_outputs(true)) all.push_back(f);
+  for (const std::string& f : all)
+    if (std::find(mine.begin(), mine.end(), f) == mine.end()) others.push_back(f);
+  return others;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -525,11 +518,16 @@ int main(int argc, char** argv) {
   cli.use_common({"--out"});
   Settings s;
   cli.add_switch("--quick", "a reduced sweep for the plots target (under a minute)", [&] { s.quick = true; });
+  cli.add_switch("--curtain", "instead, the study of cloth that moves (the curtain)", [&] { s.curtain_only = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    prepare_outputs(opt.run.out_dir, outputs(s.quick), s.quick ? full_run_only() : std::vector<std::string>{});
+    prepare_outputs(opt.run.out_dir, outputs(s.quick, s.curtain_only), other_outputs(s.quick, s.curtain_only));
     s.out = opt.run.out_dir;
     s.command = reader_command(argc, argv);
+    if (s.curtain_only) {
+      ch10::curtain_study(s.quick, s.out, s.command);
+      return 0;
+    }
     write_table_fragment(s.out + "/preset.md", preset_table(), s.command);
     // [methods]
     const std::vector<double> stiffnesses = {1e3, 1e4, 1e5, 1e6};

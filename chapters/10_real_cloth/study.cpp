@@ -131,6 +131,19 @@ Run run_to(const Scene& scene, const std::string& method, double T, long long st
   return best;
 }
 
+bool stays_bounded(const Scene& scene, const std::string& method, double h, int steps) {
+  ForceField field(scene);
+  auto stepper = ch10::make_method(method, field);
+  Vector x = scene.initial_positions(), v = scene.initial_velocities();
+  for (Eigen::Index k = 0; k < x.size(); ++k) x[k] += 1e-6 * std::sin(1.7 * static_cast<double>(k));  // seed all modes
+  for (int k = 0; k < steps; ++k) {
+    throw_if_interrupted();
+    stepper->step(h, x, v);
+    if (!x.allFinite() || (x - scene.initial_positions()).cwiseAbs().maxCoeff() > 1.0) return false;
+  }
+  return true;
+}
+
 double max_distance(const Vector& a, const Vector& b) {
   double worst = 0;
   for (Eigen::Index k = 0; k + 2 < a.size(); k += 3) worst = std::max(worst, (a.segment<3>(k) - b.segment<3>(k)).norm());
@@ -160,6 +173,12 @@ void write_text(const std::string& dir, const std::string& name, const std::stri
   OutputFile file(dir + "/" + name);
   std::fputs(text.c_str(), file.get());
   file.commit();
+}
+
+std::string step_text(double h) {
+  const double per_second = 1 / h;
+  if (std::abs(per_second - std::round(per_second)) < 1e-6 * per_second) return format("1/%.0f", per_second);
+  return format("%.3g", h);
 }
 
 std::string format(const char* fmt, ...) {

@@ -42,6 +42,10 @@ struct Run {
 Run run_to(const cloth::Scene& scene, const std::string& method, double T, long long steps,
            double repeat_below = 0.2);
 
+/// Whether `method` at step h keeps the scene's rest state, seeded with 1e-6 m in every coordinate, within 1 m
+/// of rest for `steps` steps (the stable-step bisection of Chapter 10).
+bool stays_bounded(const cloth::Scene& scene, const std::string& method, double h, int steps);
+
 /// Largest distance between corresponding particles of two free-particle position vectors [m].
 double max_distance(const cloth::Vector& a, const cloth::Vector& b);
 
@@ -51,6 +55,9 @@ cloth::Vector reference(const cloth::Scene& scene, double T, long long steps, bo
 
 /// Writes `text` to DIR/name through cloth::OutputFile (whole or not at all).
 void write_text(const std::string& dir, const std::string& name, const std::string& text);
+
+/// A step as the page writes it: "1/60" when 1/h is whole, else "4.7e-05".
+std::string step_text(double h);
 
 /// printf into a std::string.
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));

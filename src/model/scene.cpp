@@ -56,6 +56,8 @@ void validate(const SceneParams& p) {
     throw InputError("damping D = " + format_number(p.damping) + ": expected a finite number >= 0");
   if (!std::isfinite(p.initial_velocity_z))
     throw InputError("v0 = " + format_number(p.initial_velocity_z) + ": expected a finite number");
+  if (!std::isfinite(p.initial_swing))
+    throw InputError("swing = " + format_number(p.initial_swing) + ": expected a finite number");
   if (!(std::isfinite(p.mass) && p.mass > 0))
     throw InputError("mass = " + format_number(p.mass) + ": expected a finite number > 0");
   if (!(std::isfinite(p.gravity) && p.gravity >= 0))
@@ -107,7 +109,12 @@ Eigen::VectorXd Scene::initial_positions() const { return rest_positions_.head(d
 
 Eigen::VectorXd Scene::initial_velocities() const {
   Eigen::VectorXd v = Eigen::VectorXd::Zero(dof_count());
-  for (int s = 0; s < free_count_; ++s) v[3 * s + 2] = params_.initial_velocity_z;
+  const Grid& g = params_.grid;
+  for (int s = 0; s < free_count_; ++s) {
+    // A rigid turn at rate w about the edge's line: v = w e_x x (r - r_edge), whose z part is w (y_edge - y).
+    const int j = particle_of_slot_[static_cast<std::size_t>(s)] % g.N;
+    v[3 * s + 2] = params_.initial_velocity_z + params_.initial_swing * (g.N - 1 - j) * g.d;
+  }
   return v;
 }
 

@@ -42,6 +42,9 @@ struct SceneParams {
   FamilySet families = FamilySet::all();
   PinSet pins = PinSet::corners;
   double initial_velocity_z = -20.0;  ///< v0: z velocity of every free particle at t = 0 [m/s]
+  /// w: the cloth starts turning rigidly about the line of the edge j = N-1 (y = (N-1) d, z = 0) at w rad/s, on top
+  /// of v0; w > 0 lifts the far edge. Particle (i, j) gets the z velocity w (N-1-j) d (Chapter 10's swinging curtain).
+  double initial_swing = 0.0;
   double mass = 1.0;                  ///< m, the same for every particle [kg]
   double gravity = 9.81;              ///< g [m/s^2]; 0 removes the gravity term
 };
@@ -81,7 +84,7 @@ class Scene {
 
   /// Rest positions of all slots (3 per slot, free slots first): the pinned tail never changes.
   [[nodiscard]] const Eigen::VectorXd& rest_positions() const { return rest_positions_; }
-  /// Initial free-particle positions x(0) (the rest configuration) and velocities v(0) = (0, 0, v0).
+  /// Initial free-particle positions x(0) (the rest configuration) and velocities v(0) = (0, 0, v0 + w (N-1-j) d).
   [[nodiscard]] Eigen::VectorXd initial_positions() const;
   [[nodiscard]] Eigen::VectorXd initial_velocities() const;
 

@@ -112,6 +112,7 @@ constexpr CommonFlag common_flags[] = {
     {"--springs", "LIST", "comma list of structural,shear,flexion", "all three"},
     {"--pins", "corners|corner|edge|none", "pinned particles", "corners"},
     {"--v0", "vz", "initial z velocity of free particles [m/s]", "-20"},
+    {"--swing", "w", "initial turning rate about the edge j = N-1 [rad/s] (> 0 lifts the far edge)", "0"},
     {"--dt", "h", "time step [s], > 0", "0.01"},
     {"--t-end", "T", "simulated time [s], >= dt", "2"},
     {"--frames", "n", "frames.dat holds n+1 frames (at most one per step), 1 <= n <= 100000", "20"},
@@ -165,6 +166,7 @@ void set_common(Options& opt, std::string& grid_text, const std::string& flag, c
     else if (value == "none") opt.scene.pins = PinSet::none;
     else throw InputError("unknown pin set " + quoted(value) + ": expected corners, corner, edge or none");
   } else if (flag == "--v0") opt.scene.initial_velocity_z = parse_number(value);
+  else if (flag == "--swing") opt.scene.initial_swing = parse_number(value);
   else if (flag == "--dt") opt.run.dt = positive(value);
   else if (flag == "--t-end") opt.run.t_end = positive(value);
   else if (flag == "--frames") {

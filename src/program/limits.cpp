@@ -89,7 +89,12 @@ void require_representable(const SceneParams& scene, const RunSettings& settings
   constexpr double largest_energy = 1e300;
   const double d = p.grid.d;
   const double extent = d * std::hypot(p.grid.M - 1, p.grid.N - 1);
-  const double v0 = std::abs(p.initial_velocity_z);
+  // The fastest initial speed: v0 plus the far edge's share of the swing, w (N-1) d.
+  const double swing = std::abs(p.initial_swing) * (p.grid.N - 1) * d;
+  const double v0 = std::abs(p.initial_velocity_z) + swing;
+  const std::string speed_flag = swing > std::abs(p.initial_velocity_z) ? "--swing" : "--v0";
+  const std::string speed_value = speed_flag == "--swing" ? format_number(p.initial_swing) + " rad/s"
+                                                          : format_number(p.initial_velocity_z) + " m/s";
   const double T = run.t_end;
   const auto refuse = [](const std::string& flag, const std::string& what) {
     throw InputError(flag + ": " + what);
@@ -104,8 +109,8 @@ void require_representable(const SceneParams& scene, const RunSettings& settings
       refuse("--spacing", format_number(d) + " makes the cloth " + format_number(extent) +
                               " m wide, too large to square in a double; expected a cloth narrower than 1e149 m");
     if (v0 * T >= fall)
-      refuse("--v0", format_number(p.initial_velocity_z) + " m/s carries the cloth " + format_number(v0 * T) +
-                         " m in --t-end, too far to square in a double; expected |v0| T below 1e149 m");
+      refuse(speed_flag, speed_value + " carries the cloth " + format_number(v0 * T) +
+                             " m in --t-end, too far to square in a double; expected |v0| T below 1e149 m");
     refuse("--t-end", format_number(T) + " s lets the cloth fall " + format_number(fall) +
                           " m, too far to square in a double; expected g T^2 / 2 below 1e149 m");
   }
@@ -113,8 +118,9 @@ void require_representable(const SceneParams& scene, const RunSettings& settings
   const double kinetic = 0.5 * p.mass * v0 * v0 * particles;
   if (!(kinetic <= largest_energy)) {
     if (v0 * v0 >= p.mass * particles)
-      refuse("--v0", format_number(p.initial_velocity_z) + " m/s gives a kinetic energy of " + format_number(kinetic) +
-                         " J at t = 0, beyond what the model's doubles hold (1e300); expected a smaller |v0|");
+      refuse(speed_flag, speed_value + " gives a kinetic energy of " + format_number(kinetic) +
+                             " J at t = 0, beyond what the model's doubles hold (1e300); expected a smaller |" +
+                             speed_flag.substr(2) + "|");
     refuse("--mass", format_number(p.mass) + " kg gives a kinetic energy of " + format_number(kinetic) +
                          " J at t = 0, beyond what the model's doubles hold (1e300); expected a smaller mass");
   }

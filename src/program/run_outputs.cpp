@@ -5,6 +5,7 @@
 #include "program/interrupt.hpp"
 #include "program/output.hpp"
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -56,6 +57,11 @@ void write_outputs(const RunResult& result, const Stepper& stepper, const RunSet
   };
   // The flexion springs' own stiffness only when one was given, so that every other run.txt stays as it was.
   if (p.flexion_stiffness) kv.insert(kv.begin() + 5, {"K_flexion", num(*p.flexion_stiffness)});
+  // Likewise the initial swing, only when the run starts turning.
+  if (p.initial_swing != 0) {
+    const auto v0 = std::find_if(kv.begin(), kv.end(), [](const auto& entry) { return entry.first == "v0"; });
+    kv.insert(v0 + 1, {"swing", num(p.initial_swing)});
+  }
   kv.insert(kv.end(), extra.begin(), extra.end());
   const int signal = stop_signal(settings);
   if (result.status == RunStatus::interrupted || (result.status == RunStatus::ok && signal != 0)) {
