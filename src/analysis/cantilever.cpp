@@ -65,7 +65,7 @@ SceneParams cantilever_scene(const CantileverParams& p) {
 Cantilever::Cantilever(const CantileverParams& params)
     : params_(params), scene_(std::make_unique<Scene>(cantilever_scene(params))) {
   springs_ = std::make_unique<ForceField>(*scene_);
-  bending_ = std::make_unique<BendingEnergy>(*scene_, params.model, params.bending_rigidity);
+  bending_ = std::make_unique<BendingEnergy>(*scene_, params.model, params.bending_rigidity, params.split);
   const Grid& g = scene_->grid();
   masses_.resize(scene_->free_count());
   for (int s = 0; s < scene_->free_count(); ++s) {

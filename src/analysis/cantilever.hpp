@@ -19,6 +19,7 @@ struct CantileverParams {
   double bending_rigidity = 2.5e-6;  ///< B [N m]: bending moment per unit width per unit curvature
   double stiffness = 1e4;            ///< K [N/m] of the structural and shear springs (the sheet's stretching)
   BendingModel model = BendingModel::hinge;
+  GridSplit split = GridSplit::both;     ///< how the cells are cut into triangles (model/bending.hpp)
   double reference_curvature = 20;   ///< kappa_ref [1/m]: where the flexion springs match B (model/fabric.hpp)
   double gravity = 9.81;             ///< g [m/s^2]
 };
