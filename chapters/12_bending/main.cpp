@@ -133,7 +133,11 @@ int main(int argc, char** argv) {
       prepare_outputs(opt.run.out_dir, report_outputs(), single_outputs());
       return report_runs(opt.run.out_dir, full, reader_command(argc, argv));
     }
-    cantilever_grid(params);  // the strip's size is checked before anything is written
+    try {
+      cantilever_grid(params);  // the strip's size is checked before anything is written
+    } catch (const InputError& e) {
+      throw InputError(std::string("--overhang, --spacing: ") + e.what());
+    }
     prepare_outputs(opt.run.out_dir, single_outputs(), report_outputs());
     return single_strip(params, opt.run.out_dir, cli.program());
   });
