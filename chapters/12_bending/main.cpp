@@ -9,6 +9,7 @@
 #include "base/input_error.hpp"
 #include "program/command_line.hpp"
 #include "program/fragment.hpp"
+#include "program/interrupt.hpp"
 #include "program/output.hpp"
 
 #include <cmath>
@@ -41,10 +42,11 @@ void refuse_scene_flags(int argc, char** argv) {
 
 // [single_strip]
 // One strip: its rest shape from the elastica start, final.dat, and run.txt with what a reader needs to check it
-// against an elastica of their own. Exit status 3 when Newton's method did not reach rest.
+// against an elastica of their own. Exit status 3 when Newton's method did not reach rest, 128 + the signal
+// when a signal stopped it (the shape reached so far is written).
 int single_strip(const CantileverParams& params, const std::string& dir, const std::string& program) {
   Cantilever strip(params);
-  const CantileverRest rest = strip.rest_shape();
+  const CantileverRest rest = strip.rest_shape(CantileverStart::elastica, 1e-9, 300, &interrupt_flag());
   const Scene& scene = strip.scene();
   write_final(dir + "/final.dat", scene, rest.x, Vector::Zero(scene.dof_count()));
   const ElasticaShape exact = heavy_elastica(strip.lambda());
@@ -75,8 +77,10 @@ int single_strip(const CantileverParams& params, const std::string& dir, const s
       {"chord_angle_degrees", num(rest.chord_angle * deg)},
       {"elastica_tip_deflection", num(exact.tip_deflection * params.overhang)},
       {"elastica_chord_angle_degrees", num(exact.chord_angle * deg)},
-      {"status", rest.converged ? "ok" : "not_at_rest"},
+      {"status", rest.interrupted ? "interrupted" : rest.converged ? "ok" : "not_at_rest"},
   });
+  // Interrupted: the shape reached so far is kept, and run_program exits with 128 + the signal.
+  if (rest.interrupted) throw Interrupted{interrupt_signal()};
   if (!rest.converged) {
     std::cerr << program << ": static equilibrium not reached in " << rest.iterations << " Newton iterations: the "
               << "largest force left is " << format_number(rest.residual, 3) << " N, "

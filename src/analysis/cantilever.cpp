@@ -120,7 +120,8 @@ Vector Cantilever::elastica_layout() const {
   return x;
 }
 
-CantileverRest Cantilever::rest_shape(CantileverStart start, double tolerance, int max_iterations) {
+CantileverRest Cantilever::rest_shape(CantileverStart start, double tolerance, int max_iterations,
+                                      const std::atomic<int>* stop) {
   const int n = scene_->dof_count();
   CantileverRest rest;
   rest.x = start == CantileverStart::elastica ? elastica_layout() : scene_->initial_positions();
@@ -139,6 +140,10 @@ CantileverRest Cantilever::rest_shape(CantileverStart start, double tolerance, i
   for (; rest.iterations < max_iterations; ++rest.iterations) {
     rest.residual = f.lpNorm<Eigen::Infinity>();
     if (rest.residual <= target) break;
+    if (stop != nullptr && stop->load() != 0) {
+      rest.interrupted = true;
+      break;
+    }
     springs_->jacobians(rest.x, zero_velocity_, dfdx, dfdv);
     // Hessian of the energy: the springs' -df/dx and the bending Hessian; plus M / tau^2.
     SparseMatrix A = -dfdx + bending_->hessian(rest.x, false);

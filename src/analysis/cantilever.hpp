@@ -5,6 +5,7 @@
 #include "model/bending.hpp"
 #include "model/force_field.hpp"
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -41,6 +42,7 @@ struct CantileverRest {
   double residual = 0;        ///< |f|_inf [N]: the largest force left on a particle
   double weight = 0;          ///< the weight of an interior particle, rho_A d^2 g [N], the scale of the residual
   bool converged = false;     ///< residual <= tolerance times weight
+  bool interrupted = false;   ///< the stop flag ended the search
   double tip_deflection = 0;  ///< how far the tip row is below the clamp, averaged across the strip [m]
   double tip_x = 0;           ///< the tip row's distance from the clamp line along the strip's length [m]
   double chord_angle = 0;     ///< the tip chord below the horizontal [rad]
@@ -74,8 +76,10 @@ class Cantilever {
   /// when it would rise or the matrix is not positive definite), from the flat strip. Converged when the largest
   /// force is at most `tolerance` times an interior particle's weight, or at the rounding level of the springs'
   /// forces, 64 eps K 2d.
+  /// `stop`, when given, is read before each iteration: a value other than 0 ends the search there, with
+  /// `interrupted` set and the shape reached so far.
   CantileverRest rest_shape(CantileverStart start = CantileverStart::elastica, double tolerance = 1e-9,
-                            int max_iterations = 300);
+                            int max_iterations = 300, const std::atomic<int>* stop = nullptr);
 
   /// lambda = rho_A g L^3 / B = (L / c)^3, the heavy elastica's one parameter.
   [[nodiscard]] double lambda() const;

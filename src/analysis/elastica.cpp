@@ -23,7 +23,7 @@ State derivative(double lambda, double s, const State& u) {
 State shoot(double lambda, double kappa0, int steps, ElasticaShape* shape) {
   State u(0, kappa0, 0, 0);
   const double h = 1.0 / steps;
-  if (shape) {
+  if (shape != nullptr) {
     shape->x.assign(1, 0.0);
     shape->y.assign(1, 0.0);
   }
@@ -34,7 +34,7 @@ State shoot(double lambda, double kappa0, int steps, ElasticaShape* shape) {
     const State k3 = derivative(lambda, s + h / 2, u + h / 2 * k2);
     const State k4 = derivative(lambda, s + h, u + h * k3);
     u += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-    if (shape) {
+    if (shape != nullptr) {
       shape->x.push_back(u[2]);
       shape->y.push_back(u[3]);
     }
