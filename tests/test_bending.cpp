@@ -1,8 +1,8 @@
 // The bending energies of Chapter 12 against independent truth: the dihedral angle's gradient and Hessian and
 // both models' forces and Hessians against central differences; zero energy and force on a flat sheet and
 // invariance under rigid motion; a sheet bent uniformly into a cylinder against the continuum energy
-// B kappa^2 / 2 per area, about a grid line, about the split diagonal (the same) and about the other one (three
-// times as much, as the page derives).
+// B kappa^2 / 2 per area about a grid line, and the multiples the page derives about the diagonals and in twist,
+// for one triangulation and for both.
 #include <doctest/doctest.h>
 
 #include "model/bending.hpp"
@@ -143,7 +143,7 @@ TEST_CASE("a flat sheet has no bending energy or force, and a rigid motion of a 
   }
 }
 
-TEST_CASE("a sheet bent into a cylinder about a grid line has the continuum energy B kappa^2 / 2 per area; about "
+TEST_CASE("a sheet bent into a cylinder about a grid line has the continuum energy B kappa^2 / 2 per area, about "
           "the diagonals and twisted it has the multiples the hinges' weights predict") {
   // 201 x 201 particles, kappa d = 0.01: the hinges of the sheet's last row of cells along the bend are on its
   // boundary, so the sum misses about 1 / 200 of the area.

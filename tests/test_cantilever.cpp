@@ -1,6 +1,7 @@
 // The cantilever strip against the heavy elastica (an independent solution of the continuum problem): the tip
-// deflection of both bending models within 2 % at a spacing of L/20 and closer at L/40; the flexion-spring strip,
-// with the stiffness Chapter 10 maps from B, misses it; the strip's weight is rho_A g W per length.
+// deflection of both bending models within 2 % at a spacing of L/20, a quarter of its error at L/10; the
+// flexion-spring strip, with the stiffness Chapter 10 maps from B, misses it; the strip's weight is rho_A g W per
+// length; the rest shape does not depend on where the search starts.
 #include <doctest/doctest.h>
 
 #include "analysis/cantilever.hpp"
@@ -41,11 +42,11 @@ TEST_CASE("the strip's particles carry its weight by area: rho_A g W per length,
   CHECK(c.scene().free_count() == (c.scene().grid().M - 2) * c.scene().grid().N);
 }
 
-TEST_CASE("both bending models hold the cantilever within 2 % of the elastica at L/20, closer at L/40") {
+TEST_CASE("both bending models hold the cantilever within 2 % of the elastica at L/20, four times closer than at L/10") {
   for (const BendingModel model : {BendingModel::hinge, BendingModel::quadratic}) {
     CAPTURE(bending_models().name(model));
     double previous = 0;
-    for (const int cells : {20, 40}) {  // the error is O(d^2): a quarter at L/40
+    for (const int cells : {10, 20}) {  // the error is O(d^2): a quarter at each halving
       CAPTURE(cells);
       Cantilever c(strip(model, cells));
       const CantileverRest rest = c.rest_shape();
@@ -53,7 +54,7 @@ TEST_CASE("both bending models hold the cantilever within 2 % of the elastica at
       const double error = relative_tip_error(c.params(), rest);
       MESSAGE(bending_models().name(model) << " L/" << cells << ": tip deflection " << rest.tip_deflection
                                            << " m, relative error " << error);
-      CHECK(std::abs(error) < 0.02);
+      if (cells == 20) CHECK(std::abs(error) < 0.02);
       if (previous != 0) CHECK(std::abs(error) < 0.35 * std::abs(previous));
       previous = error;
     }

@@ -40,7 +40,6 @@ void refuse_scene_flags(int argc, char** argv) {
   }
 }
 
-// [single_strip]
 // One strip: its rest shape from the elastica start, final.dat, and run.txt with what a reader needs to check it
 // against an elastica of their own. Exit status 3 when Newton's method did not reach rest, 128 + the signal
 // when a signal stopped it (the shape reached so far is written).
@@ -92,7 +91,6 @@ int single_strip(const CantileverParams& params, const std::string& dir, const s
               rest.iterations, rest.tip_deflection, exact.tip_deflection * params.overhang, rest.chord_angle * deg);
   return 0;
 }
-// [single_strip]
 
 }  // namespace
 

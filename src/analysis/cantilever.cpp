@@ -144,6 +144,7 @@ CantileverRest Cantilever::rest_shape(CantileverStart start, double tolerance, i
       rest.interrupted = true;
       break;
     }
+    // [newton_step]
     springs_->jacobians(rest.x, zero_velocity_, dfdx, dfdv);
     // Hessian of the energy: the springs' -df/dx and the bending Hessian; plus M / tau^2.
     SparseMatrix A = -dfdx + bending_->hessian(rest.x, false);
@@ -184,7 +185,8 @@ CantileverRest Cantilever::rest_shape(CantileverStart start, double tolerance, i
         }
       }
     }
-      tau = accepted && alpha == 1 ? std::min(2 * tau, 1e6) : accepted ? tau : tau / 4;
+    tau = accepted && alpha == 1 ? std::min(2 * tau, 1e6) : accepted ? tau : tau / 4;
+    // [newton_step]
     if (tau < 1e-12) break;
   }
   rest.residual = f.lpNorm<Eigen::Infinity>();
