@@ -450,3 +450,27 @@ TEST_CASE("ch10_xpbd: an experiment program on its own scenes takes --out only")
                               });
 }
 #endif
+
+#ifdef CLOTH_HAVE_CH12_BENDING
+TEST_CASE("ch12_bending: bad input gives status 2, one line naming the flag, nothing written") {
+  // A static single run: the scene flags it uses, no run flags; --grid and --pins only to refuse them.
+  const std::vector<std::string> unused = {"--K-flexion", "--damping", "--damping-model", "--springs",
+                                           "--v0",        "--dt",      "--t-end",         "--frames"};
+  std::vector<BadInput> cases;
+  for (const BadInput& c : shared_flag_cases())
+    if (std::find(unused.begin(), unused.end(), c.args.front()) == unused.end()) cases.push_back(c);
+  for (const std::string& flag : unused) cases.push_back({{flag, "1"}, {"unknown flag '" + flag + "'", "--help"}});
+  const std::vector<BadInput> own = {
+      {{"--bending", "springy"}, {"--bending", "'springy'", "flexion, hinge, quadratic"}},
+      {{"--bending-rigidity", "0"}, {"--bending-rigidity", "> 0"}},
+      {{"--overhang", "-0.1"}, {"--overhang", "> 0"}},
+      {{"--overhang", "0.0501"}, {"--overhang", "whole number of spacings"}},
+      {{"--scene", "drape"}, {"--scene", "'drape'", "cantilever"}},
+      {{"--full"}, {"--full", "--report-runs"}},
+      {{"--grid", "10x10"}, {"--grid", "expected no --grid"}},
+      {{"--pins", "edge"}, {"--pins", "expected no --pins"}},
+  };
+  cases.insert(cases.end(), own.begin(), own.end());
+  expect_refused("ch12_bending", cases);
+}
+#endif

@@ -200,6 +200,13 @@ std::vector<ProgramOutputs> every_output() {
 #ifdef CLOTH_HAVE_CH10_XPBD
       {"ch10_xpbd", {}, {"xpbd_gap.md", "xpbd_strain.md"}},
 #endif
+#ifdef CLOTH_HAVE_CH12_BENDING
+      {"ch12_bending", {}, {"final.dat", "run.txt"}},
+      {"ch12_bending",
+       {"--report-runs"},
+       {"shapes.dat", "convergence.dat", "convergence.md", "split.md", "peirce.md", "fabrics.md", "cost.md",
+        "stable_step.md"}},
+#endif
   };
 }
 
@@ -268,6 +275,11 @@ constexpr std::size_t folder_cases_ch10 = 0;
 constexpr std::size_t folder_cases_ch10_peers = 4 + 1;
 #else
 constexpr std::size_t folder_cases_ch10_peers = 0;
+#endif
+#ifdef CLOTH_HAVE_CH12_BENDING
+constexpr std::size_t folder_cases_ch12 = (2 + 1) + (8 + 1);
+#else
+constexpr std::size_t folder_cases_ch12 = 0;
 #endif
 
 #ifdef CLOTH_HAVE_CH10_CLOTH
@@ -353,11 +365,11 @@ std::vector<Refused> cases_to_run(const std::vector<Refused>& cases) {
 #endif
 }
 
-TEST_CASE("a folder in the way of any output of ch01-ch04, ch08 and ch10, in any mode, is bad input: status 2, nothing "
-          "written") {
+TEST_CASE("a folder in the way of any output of ch01-ch04, ch08, ch10 and ch12, in any mode, is bad input: status 2, "
+          "nothing written") {
   const std::vector<Refused> cases = in_the_way_cases(every_output());
   CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08 + folder_cases_ch10 + folder_cases_ch10_peers +
-                       folder_cases_ch10_cloth + folder_cases_ch10_xpbd);
+                       folder_cases_ch10_cloth + folder_cases_ch10_xpbd + folder_cases_ch12);
   expect_refused(cases_to_run(cases));
 }
 

@@ -25,6 +25,7 @@ bool pinned_by_definition(PinSet pins, int M, int N, int i, int j) {
     case PinSet::corner: return i == 0 && j == 0;
     case PinSet::edge: return j == N - 1;
     case PinSet::none: return false;
+    case PinSet::clamped: return i <= 1;
   }
   return false;
 }

@@ -20,6 +20,7 @@ const char* pin_set_name(PinSet pins) {
     case PinSet::corner: return "corner";
     case PinSet::edge: return "edge";
     case PinSet::none: return "none";
+    case PinSet::clamped: return "clamped";
   }
   return "?";
 }
@@ -32,6 +33,7 @@ bool pinned(const Grid& g, PinSet pins, int i, int j) {
     case PinSet::corner: return i == 0 && j == 0;
     case PinSet::edge: return j == g.N - 1;
     case PinSet::none: return false;
+    case PinSet::clamped: return i <= 1;
   }
   return false;
 }

@@ -24,7 +24,8 @@ enum class PinSet {
   corners,  ///< the four corners (the report's scene)
   corner,   ///< the one corner (0, 0)
   edge,     ///< the whole edge j = N-1
-  none      ///< nothing: the cloth falls freely
+  none,     ///< nothing: the cloth falls freely
+  clamped   ///< the first two rows i = 0 and 1: the clamp of Chapter 12's cantilever, which also fixes the slope
 };
 
 const char* damping_model_name(DampingModel model);

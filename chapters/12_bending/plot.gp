@@ -1,0 +1,43 @@
+# Chapter 12 figures: the cantilever strip's rest shapes against the heavy elastica, and the tip deflection's
+# convergence with the spacing. Called as: gnuplot -e "data='DIR'; plots='DIR'" plot.gp
+set terminal pngcairo size 1000,650 enhanced font "Sans,12"
+
+# 1. Shapes at lambda = 1, 8, 40 (index 4k: elastica, 4k+1 hinge, 4k+2 quadratic, 4k+3 flexion springs).
+set output plots.'/ch12_shapes.png'
+set title "Cantilever strips at rest, L/20, against the heavy elastica (lambda = (L/c)^3)"
+set xlabel "x / L"
+set ylabel "z / L"
+set size ratio -1
+set xrange [0:1.05]
+set yrange [-1:0.05]
+set grid
+set key outside right top font ",10"
+F = data.'/shapes.dat'
+plot for [k=0:2] F index 4*k u 1:2 w l lw 2 lc rgb "#333333" t (k == 0 ? "elastica" : ""), \
+     for [k=0:2] F index 4*k+1 u 1:2 w p pt 7 ps 0.8 lc rgb "#1f77b4" t (k == 0 ? "hinge" : ""), \
+     for [k=0:2] F index 4*k+2 u 1:2 w p pt 6 ps 1.2 lc rgb "#2ca02c" t (k == 0 ? "quadratic" : ""), \
+     for [k=0:2] F index 4*k+3 u 1:2 w lp pt 4 ps 0.8 dt 2 lc rgb "#d62728" t (k == 0 ? "flexion springs" : "")
+set label 1 "lambda = 1" at 0.80, -0.07
+set label 2 "lambda = 8" at 0.55, -0.52
+set label 3 "lambda = 40" at 0.12, -0.85
+replot
+unset label 1
+unset label 2
+unset label 3
+set size noratio
+
+# 2. Convergence at lambda = 8.
+set output plots.'/ch12_convergence.png'
+set title "Tip deflection against the heavy elastica, lambda = 8, as the spacing halves"
+set xlabel "spacing d / L"
+set ylabel "|relative error of the tip deflection|"
+set logscale xy
+set format x "10^{%L}"
+set format y "10^{%L}"
+set autoscale
+set key inside left top font ",11" box opaque
+G = data.'/convergence.dat'
+plot G u 2:3 w lp pt 7 lw 2 lc rgb "#1f77b4" t "hinge", \
+     G u 2:5 w lp pt 6 lw 2 lc rgb "#2ca02c" t "quadratic", \
+     G u 2:7 w lp pt 4 lw 2 lc rgb "#d62728" t "flexion springs (K from B at 20 /m)", \
+     G u 2:(0.25*($2*20)**2*0.002) w l dt 2 lc rgb "#888888" t "slope 2"
