@@ -190,6 +190,9 @@ std::string CommandLine::usage() const {
       std::string accepted = f.accepted;
       // Without --dt (an adaptive program) T is not bounded below by a step.
       if (const auto at = accepted.find(", >= dt"); at != std::string::npos && !uses("--dt")) accepted.erase(at);
+      // Nor are its frames one per step at most: it interpolates each at its time (the model page, frames.dat).
+      if (const auto at = accepted.find("(at most one per step)"); at != std::string::npos && !uses("--dt"))
+        accepted.replace(at, 22, "(interpolated at their times)");
       std::string fallback = std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback);
       for (const auto& [name, value] : defaults_)
         if (name == f.name) fallback = value;
@@ -278,8 +281,8 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
   }
   require_representable(opt.scene, opt.run);
   // What one recorded run by an explicit method holds: a fixed-step program's frames are at most one per step, an
-  // adaptive program's (no --dt, but --frames) are interpolated, all of them; a program that records neither
-  // holds the scene and the method.
+  // adaptive program's (no --dt, but --frames) are interpolated, all of them; a program with a horizon that records
+  // neither holds the scene and the method.
   if (uses("--dt")) {
     RunSettings recorded = opt.run;
     if (!uses("--frames")) recorded.frames = 0;  // a program without --frames records none
@@ -287,7 +290,7 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
   }
   else if (uses("--frames"))
     require_interpolated_run_memory(opt.scene, opt.run, explicit_bytes_per_particle());
-  else if (uses("--grid"))
+  else if (uses("--t-end"))
     require_memory(static_cast<double>(opt.scene.grid.M) * opt.scene.grid.N * explicit_bytes_per_particle(), "--grid",
                    "a run on a " + std::to_string(opt.scene.grid.M) + "x" + std::to_string(opt.scene.grid.N) + " grid",
                    ": expected a smaller grid");

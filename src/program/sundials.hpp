@@ -1,7 +1,8 @@
-// How a SUNDIALS integration (CVODE, ARKODE's ARKStep) ended, said in the model page's terms: the status of
-// run.txt (ok, diverged, step_failed with its failure kind, interrupted) with the library's own return flag beside
-// it, and the callbacks' way of honouring SIGINT and SIGTERM inside the library. Header-only: the library does not
-// link SUNDIALS; the benchmark programs that do (Chapters 9 and 10) include it.
+// What the benchmark programs that drive SUNDIALS (CVODE, ARKODE's ARKStep) share: the callbacks' way of honouring
+// SIGINT and SIGTERM inside the library, ARKODE's fixed steps ending on T with a step's own value, and how an
+// integration ended said in the model page's terms (ok, diverged, step_failed with its failure kind, interrupted)
+// with the library's own return flag beside it. Header-only: the library does not link SUNDIALS; the programs
+// that do (Chapters 9 and 10) include it.
 #pragma once
 
 #include "integrators/simulate.hpp"
@@ -11,6 +12,8 @@
 #include <cvode/cvode.h>
 
 #include <cstdlib>
+#include <new>
+#include <stdexcept>
 #include <string>
 
 namespace cloth {
@@ -19,6 +22,32 @@ namespace cloth {
 /// SUNDIALS is C, so no exception may pass through it, and an unrecoverable failure (< 0) makes CVode and
 /// ARKStepEvolve return after the current attempt, with the last successful step's state. 0 otherwise.
 inline int sundials_stop_requested() { return interrupt_flag().load(std::memory_order_relaxed) != 0 ? -1 : 0; }
+
+/// ARKStep at its fixed step h from where it is (t) to T, one step at a time, the last one shortened to end on T
+/// exactly when T is not a multiple of h, as the book's driver does: y is then the step's own solution at T.
+/// (Asked for T in its normal mode, or given T as a stop time, ARKODE 6.4 returns its interpolant instead, which for
+/// a first-order table has degree 0 and halves the last step's change.) Returns ARKStepEvolve's last flag.
+/// A step that fails leaves y and t at the last good state (ARKODE 6.4 returns the time of the failed attempt).
+inline int arkode_fixed_steps_to(void* arkode_mem, double T, double h, N_Vector y, realtype& t) {
+  N_Vector last = N_VClone(y);
+  if (last == nullptr) throw std::bad_alloc();
+  int flag = ARK_SUCCESS;
+  while (flag >= 0 && T - t > 1e-9 * h) {
+    if (t + h > T) {
+      flag = ARKStepSetFixedStep(arkode_mem, T - t);
+      if (flag < 0) break;
+    }
+    N_VScale(1.0, y, last);
+    const realtype t_last = t;
+    flag = ARKStepEvolve(arkode_mem, T, y, &t, ARK_ONE_STEP);
+    if (flag < 0) {
+      N_VScale(1.0, last, y);
+      t = t_last;
+    }
+  }
+  N_VDestroy(last);
+  return flag;
+}
 
 /// The model page's reading of a SUNDIALS return flag.
 struct SundialsEnd {
