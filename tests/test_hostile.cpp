@@ -599,7 +599,7 @@ TEST_CASE("hostile flags for ch05-ch10: flags a program does not use, bad values
 
 #endif
 
-TEST_CASE("one rule for every number: decimal or hexadecimal, finite, normal; tableau entries and fractions alike") {
+TEST_CASE("one rule for every number: decimal or hexadecimal, finite and normal, in flags, tableau entries and fractions") {
   // Hexadecimal floats give a double to its last bit, on a flag and in a tableau file alike.
   CHECK(cloth::parse_number("0x1.8p-3") == 0.1875);
   CHECK(cloth::parse_tableau_entry("0x1p-1") == 0.5);

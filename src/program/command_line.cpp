@@ -302,9 +302,12 @@ bool Options::has(const std::string& flag) const { return std::find(given.begin(
 void refuse_unused(const Options& opt, const std::string& mode, std::initializer_list<const char*> unused,
                    const std::string& why) {
   for (const char* flag : unused)
-    if (opt.has(flag))
-      throw InputError(std::string(flag) + ": " + mode + " does not use it (" + why + "): expected " + mode +
-                       " without " + flag);
+    if (opt.has(flag)) {
+      std::string message = flag;
+      message.append(": ").append(mode).append(" does not use it (").append(why).append("): expected ");
+      message.append(mode).append(" without ").append(flag);
+      throw InputError(message);
+    }
 }
 
 namespace {
