@@ -769,6 +769,10 @@ TEST_CASE("SIGINT and SIGTERM during the benchmark studies: honoured within a se
       // Chapter 8's studies: the hard case and the pairs' summary.
       {"ch08_adaptive_step", {"--experiments", "--quick"}, "out/tree_counts.md", 0.05, SIGINT,
        {"pairs.dat", "controllers.md", "estimate_check.md"}},
+#ifdef CLOTH_HAVE_CH10_PEERS
+      // Inside the reference or the peers' runs (odeint, SUNDIALS) of Chapter 10's comparison.
+      {"ch10_peers", {"--quick"}, "out/peers_check.md", 0.3, SIGTERM, {"peers.md", "peers.dat", "peers_ratio.md"}},
+#endif
   };
   for (const Case& c : cases) {
     const ProgramFolder folder;

@@ -182,11 +182,13 @@ void check(int flag, const char* call) {
   if (flag < 0) throw std::runtime_error(std::string("SUNDIALS ") + call + " failed with flag " + std::to_string(flag));
 }
 
-// A failed run's note, in the model page's terms: "step_failed (newton_not_converged) at t = 0.1 s, CV_CONV_FAILURE".
-std::string failure_note(const SundialsEnd& end, double t) {
+// A failed run's note, in the model page's terms: the status (with its failure kind), the step that could not be
+// taken and the last good time, and the library's flag: "step_failed (newton_not_converged) at step 1 after
+// t = 0 s, ARK_CONV_FAILURE".
+std::string failure_note(const SundialsEnd& end, long steps_taken, double t) {
   std::string note = run_status_name(end.status);
   if (end.status == RunStatus::step_failed) note.append(" (").append(step_failure_name(end.failure)).append(")");
-  return note + " at t = " + format_number(t, 3) + " s, " + end.flag;
+  return note + " at step " + std::to_string(steps_taken + 1) + " after t = " + format_number(t, 3) + " s, " + end.flag;
 }
 
 // [sundials_peers]
@@ -218,7 +220,7 @@ Outcome sundials_run(OdeSystem& system, Sundials peer, double tol, long long ste
     check(CVodeSetMaxNumSteps(mem, 1000000), "CVodeSetMaxNumSteps");
     const int flag = CVode(mem, T, y, &t, CV_NORMAL);
     CVodeGetNumSteps(mem, &steps_taken);
-    if (flag < 0) out = {false, failure_note(sundials_end(flag, true, true), t), 0, {}};
+    if (flag < 0) out = {false, failure_note(sundials_end(flag, true, true), steps_taken, t), 0, {}};
     CVodeFree(&mem);
   } else {
     void* mem = ARKStepCreate(nullptr, rhs_callback, 0.0, y, context);
@@ -242,7 +244,7 @@ Outcome sundials_run(OdeSystem& system, Sundials peer, double tol, long long ste
     // Step by step to T: the last step's own value, not ARKODE's interpolant (program/sundials.hpp).
     const int flag = arkode_fixed_steps_to(mem, T, T / static_cast<double>(steps), y, t);
     ARKStepGetNumSteps(mem, &steps_taken);
-    if (flag < 0) out = {false, failure_note(sundials_end(flag, false, true), t), 0, {}};
+    if (flag < 0) out = {false, failure_note(sundials_end(flag, false, true), steps_taken, t), 0, {}};
     ARKStepFree(&mem);
     ARKodeButcherTable_Free(euler);
   }
