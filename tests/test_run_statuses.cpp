@@ -794,7 +794,8 @@ TEST_CASE("SIGINT and SIGTERM during the benchmark studies: honoured within a se
   }
 }
 
-TEST_CASE("SIGINT during ch09's energy study: the interrupted run says so, and no summary lists it as finished") {
+TEST_CASE("SIGINT during ch09's energy study: the interrupted run says so and no summary lists it as finished" *
+          doctest::test_suite("slow")) {
   const ProgramFolder folder;
   // Each method's run on the report's cloth to T = 2 s takes a good fraction of a second: the first is cut short.
   const Stopped s = signalled_timed(folder, "ch09_implicit_runge_kutta", {"--report-runs", "--quick"}, "out", 0.2,
