@@ -3,6 +3,9 @@
 // machine's memory, a flag given twice) must be refused before anything runs: exit status 2, exactly one line on
 // stderr of a known shape, and the working folder left exactly as it was. The table below is the contract's
 // list of such inputs; each row is one program run.
+#include "base/input_error.hpp"
+#include "base/parse_number.hpp"
+#include "integrators/butcher_tableau.hpp"
 #include "integrators/implicit_tableaus.hpp"
 #include "process.hpp"
 #include "program_runner.hpp"
@@ -81,6 +84,7 @@ void write_inputs(const fs::path& dir) {
   write("high_order.tableau", "order 3\n0 0 0\n1 1 0\nb 1/2 1/2\n");
   write("no_bhat.tableau", "order 4\n" + std::string(rk4_rows));
   write("bhat_wrong.tableau", "order 2\nembedded_order 1\n0 0 0\n1 1 0\nb 1/2 1/2\nbhat 1 1\n");
+  write("subnormal.tableau", "order 2\nembedded_order 1\n0 0 0\n1 1 0\nb 1/2 1/2\nbhat 1 1e-310\n");
   write("huge.tableau", "order 4\n" + std::string(rk4_rows) + std::string(70000 - 8 - std::strlen(rk4_rows), '#'));
   ::mkfifo((dir / "fifo").c_str(), 0644);
   fs::create_directory(dir / "folder");
@@ -390,7 +394,7 @@ TEST_CASE("hostile flags: given twice, too small to represent, beyond what the m
       {"ch10_peers", {"--runs", "2", "--runs", "3"}, "--runs: given twice ('2', then '3'): " + given_twice},
       // Chapter 10's peer comparison: its scene is fixed, and its repetitions are a whole number from 1 to 100.
       {"ch10_peers", {"--runs", "0"}, "--runs: expected a whole number from 1 to 100, got '0'"},
-      {"ch10_peers", {"--runs", "1e9"}, "--runs: expected a whole number, got '1e9'"},
+      {"ch10_peers", {"--runs", "1e9"}, "--runs: expected a whole number from 1 to 100, got '1e9'"},
       {"ch10_peers", {"--K", "5"}, "unknown flag '--K' (ch10_peers --help lists the accepted flags)"},
 #endif
       // Numbers too small to represent normally: subnormal, or rounded to zero.
@@ -625,6 +629,103 @@ TEST_CASE("hostile flags for ch05-ch10: flags a program does not use, bad values
   cases.insert(cases.end(), values.begin(), values.end());
   CHECK(cases.size() == 41);
   expect_refused(cases);
+}
+
+#endif
+
+TEST_CASE("one rule for every number: decimal or hexadecimal, finite and normal, in flags, tableau entries and fractions") {
+  // Hexadecimal floats give a double to its last bit, on a flag and in a tableau file alike.
+  CHECK(cloth::parse_number("0x1.8p-3") == 0.1875);
+  CHECK(cloth::parse_tableau_entry("0x1p-1") == 0.5);
+  CHECK(cloth::parse_tableau_entry("1/0x1p2") == 0.25);
+  CHECK(cloth::parse_tableau_entry("-3/4") == -0.75);
+  CHECK(cloth::parse_tableau_entry("2.5e-1") == 0.25);
+  // Subnormal, rounded to zero, infinite or not a number: refused by both, fractions by their value too.
+  for (const char* bad : {"1e-310", "0x1p-1074", "1e-400", "inf", "nan", "1e999", "0x", "1/0", "1/1e308", "1e300/1e-300",
+                          "one", "1//2", "/2", "2/"}) {
+    CAPTURE(bad);
+    CHECK_THROWS_AS(cloth::parse_tableau_entry(bad), cloth::InputError);
+  }
+  for (const char* bad : {"1e-310", "0x1p-1074", "1e-400", "inf", "nan", "1e999", "0x"}) {
+    CAPTURE(bad);
+    CHECK_THROWS_AS(cloth::parse_number(bad), cloth::InputError);
+  }
+  // Counts: 64-bit, bounded, never truncated to 32 bits (4294967297 = 2^32 + 1 would become 1).
+  CHECK(cloth::parse_count("4294967296", 1, 5000000000LL) == 4294967296LL);
+  CHECK_THROWS_AS(cloth::parse_count("4294967297", 1, 100), cloth::InputError);
+  CHECK_THROWS_AS(cloth::parse_count("99999999999999999999", 1, 100), cloth::InputError);
+  CHECK_THROWS_AS(cloth::parse_count("0x10", 1, 100), cloth::InputError);
+}
+
+#if defined(CLOTH_HAVE_CH08_ADAPTIVE_STEP) && defined(CLOTH_HAVE_CH08_WORK_PRECISION) && \
+    defined(CLOTH_HAVE_CH09_IMPLICIT_RUNGE_KUTTA) && defined(CLOTH_HAVE_CH09_SUNDIALS_BENCHMARK)
+
+TEST_CASE("a folder in the way of any output of the benchmark programs ch08_work_precision and ch09_sundials_benchmark, "
+          "in any mode, is bad input before anything runs") {
+  const std::vector<Refused> cases = in_the_way_cases({
+      {"ch08_work_precision",
+       {},
+       {"work_precision.dat", "levels.dat", "levels.md", "reference.md", "spring_turn.md", "evaluation_cost.md"}},
+      {"ch09_sundials_benchmark", {}, {"final.dat", "run.txt"}},
+      {"ch09_sundials_benchmark", {"--report-runs"}, {"stiff_runs.dat", "stiff_comparison.md", "report_scene.md"}},
+  });
+  CHECK(cases.size() == (6 + 1) + (2 + 1) + (3 + 1));
+  expect_refused(cases_to_run(cases));
+}
+
+TEST_CASE("hostile flags for ch08-ch10's benchmark programs and modes: counts, numbers, flags a mode does not use") {
+  const std::string klu_memory = "needs about *, more than the * a run may use (*): expected a smaller grid";
+  expect_refused({
+      // Counts are 64-bit and bounded: 2^32 + 1 is not silently one run.
+      {"ch08_work_precision", {"--runs", "4294967297"}, "--runs: expected a whole number from 1 to 100, got '4294967297'"},
+      {"ch10_peers", {"--runs", "4294967297"}, "--runs: expected a whole number from 1 to 100, got '4294967297'"},
+      // One rule for numbers: a subnormal refused on every flag and in a tableau file alike.
+      {"ch08_work_precision", {"--K", "1e-310"}, "--K: '1e-310" + too_small},
+      {"ch09_sundials_benchmark", {"--rtol", "1e-310"}, "--rtol: '1e-310" + too_small},
+      {"ch09_sundials_benchmark", {"--atol", "0x1p-1074"}, "--atol: '0x1p-1074" + too_small},
+      {"ch08_adaptive_step", {"--tableau", "@S/subnormal.tableau"},
+       "--tableau: @S/subnormal.tableau:6: '1e-310' is not a number the book reads ('1e-310" + too_small +
+           "): write decimal or hexadecimal numbers, or fractions p/q of them"},
+      // Every flag a program lists is one it uses: no --frames where no frames are written, no --dt where the
+      // integrator chooses its steps.
+      {"ch08_work_precision", {"--frames", "5"}, "unknown flag '--frames' (ch08_work_precision --help lists the accepted flags)"},
+      {"ch09_sundials_benchmark", {"--frames", "5"},
+       "unknown flag '--frames' (ch09_sundials_benchmark --help lists the accepted flags)"},
+      {"ch09_sundials_benchmark", {"--dt", "0.001"},
+       "--dt: cvode-bdf chooses its own steps; --dt is the fixed step of --solver arkode-backward-euler"},
+      {"ch09_sundials_benchmark", {"--solver", "arkode-dirk", "--dt", "0.001"},
+       "--dt: arkode-dirk chooses its own steps; --dt is the fixed step of --solver arkode-backward-euler"},
+      // --quick only with the mode it shortens, in every program that has one.
+      {"ch09_sundials_benchmark", {"--quick"}, "--quick: only with --report-runs"},
+      {"ch09_implicit_runge_kutta", {"--quick"}, "--quick: only with --report-runs"},
+      {"ch08_adaptive_step", {"--quick"}, "--quick: only with --experiments"},
+      // A mode refuses the flags its runs do not use, and its refusal names no flag the mode refuses.
+      {"ch09_sundials_benchmark", {"--report-runs", "--rtol", "1e-3"},
+       "--rtol: --report-runs does not use it (its runs set their own solvers, tolerances, stiffness, damping, steps "
+       "and horizons): expected --report-runs without --rtol"},
+      {"ch09_sundials_benchmark", {"--report-runs", "--t-end", "5"},
+       "--t-end: --report-runs does not use it (its runs set their own solvers, tolerances, stiffness, damping, steps "
+       "and horizons): expected --report-runs without --t-end"},
+      {"ch09_implicit_runge_kutta", {"--report-runs", "--tol", "1e-3"},
+       "--tol: --report-runs does not use it (its studies run every registered method, at fixed steps, and set their "
+       "own damping): expected --report-runs without --tol"},
+      {"ch09_implicit_runge_kutta", {"--report-runs", "--tableau", "sdirk3"},
+       "--tableau: --report-runs does not use it (its studies run every registered method, at fixed steps, and set "
+       "their own damping): expected --report-runs without --tableau"},
+      {"ch08_adaptive_step", {"--experiments", "--tol", "1e-3"},
+       "--tol: --experiments does not use it (its studies choose their own pairs, tolerances, controllers and "
+       "horizon, and record no frames): expected --experiments without --tol"},
+      {"ch08_adaptive_step", {"--experiments", "--quick", "--t-end", "5"},
+       "--t-end: --experiments does not use it (its studies choose their own pairs, tolerances, controllers and "
+       "horizon, and record no frames): expected --experiments without --t-end"},
+      {"ch08_adaptive_step", {"--experiments", "--frames", "5"},
+       "--frames: --experiments does not use it (its studies choose their own pairs, tolerances, controllers and "
+       "horizon, and record no frames): expected --experiments without --frames"},
+      // Memory: KLU's factors of the 6n first-order system, checked before the run, in either mode.
+      {"ch09_sundials_benchmark", {"--grid", "2000x2000"}, "--grid: a * on a 2000x2000 grid " + klu_memory},
+      {"ch09_sundials_benchmark", {"--report-runs", "--grid", "2000x2000"},
+       "--grid: a * on a 2000x2000 grid " + klu_memory},
+  });
 }
 
 #endif

@@ -68,6 +68,7 @@ void hard_case(const Options& opt, double tol, const std::string& command) {
                        a.accepted ? 1 : 0, shortest);
         });
     // [hard_case]
+    throw_if_interrupted();  // an interrupted study writes none of its files: no table lists an unfinished run
     std::fprintf(out.get(), "\n\n");
     table.add_row({controller_name(controller), std::to_string(r.accepted), std::to_string(r.rejected),
                    std::to_string(rejected_near_zero), std::to_string(r.counters.rhs_evaluations),
@@ -95,6 +96,7 @@ void pair_summary(const Options& opt, const std::vector<double>& tolerances, con
         const ButcherTableau& t = *row->tableau;
         EmbeddedRungeKutta rk(field, t);
         const AdaptiveResult r = adaptive_simulate(rk, run, with_tolerance(tol, controller), false);
+        throw_if_interrupted();
         std::fprintf(out.get(), "%s %s %g %lld %lld %lld %.3e %.3e %s\n", t.name.c_str(), controller_name(controller),
                      tol, r.accepted, r.rejected, r.counters.rhs_evaluations, r.smallest_step, r.largest_step,
                      r.status == RunStatus::ok ? "ok" : "failed");
@@ -201,6 +203,7 @@ void estimate_check(const Options& opt, double tol, int substeps, const std::str
                                      truth, shortest);
                       });
     // [estimate_check]
+    throw_if_interrupted();
     table.add_row({"`" + t.name + "`", std::to_string(accepted), std::to_string(blind), std::to_string(blind_near_zero),
                    format_number(worst, 2), format_number(worst_ratio, 2)});
     std::fprintf(out.get(), "\n\n");

@@ -105,6 +105,11 @@ int main(int argc, char** argv) {
   cli.add_switch("--quick", "with --experiments: the reduced studies of the plots target", [&] { quick = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
+    if (experiments)
+      refuse_unused(opt, "--experiments",
+                    {"--tableau", "--tol", "--rtol", "--atol", "--first-step", "--controller", "--max-spring-turn",
+                     "--norm", "--t-end", "--frames"},
+                    "its studies choose their own pairs, tolerances, controllers and horizon, and record no frames");
     if (tol && (rtol || atol)) throw InputError("--tol: sets rtol and atol both; give either --tol or --rtol/--atol");
     settings.tolerances = {tol.value_or(rtol.value_or(1e-6)), tol.value_or(atol.value_or(1e-6)),
                            norm.value_or(NormKind::rms)};

@@ -11,6 +11,7 @@
 #include "integrators/implicit_step_control.hpp"
 #include "integrators/simulate.hpp"
 #include "program/fragment.hpp"
+#include "program/interrupt.hpp"
 #include "program/limits.hpp"
 #include "program/method_flags.hpp"
 #include "program/method_tables.hpp"
@@ -147,8 +148,9 @@ std::vector<MethodChoice> study_methods(const NewtonSettings& newton) {
 
 // [energy_study]
 // Every method on the undamped cloth (D = 0) at the run's h to its T: energy.dat per method in its own folder,
-// and energy_summary.dat with E(T) / E(0) and the work.
-void energy_study(const Options& opt, const NewtonSettings& newton, const std::string& dir,
+// and energy_summary.dat with E(T) / E(0) and the work. Returns 0, or 128 + signal when a run was interrupted: the
+// interrupted run's own run.txt says so, and the summary, which would list it as finished, is not written.
+int energy_study(const Options& opt, const NewtonSettings& newton, const std::string& dir,
                   const std::string& program, const std::string& command) {
   SceneParams p = opt.scene;
   p.damping = 0;
@@ -164,7 +166,7 @@ void energy_study(const Options& opt, const NewtonSettings& newton, const std::s
     RunSettings run = opt.run;
     run.out_dir = dir + "/energy_" + m.argument;
     RunResult r;
-    run_cloth(p, run, m, program, &r);
+    if (const int status = run_cloth(p, run, m, program, &r); status >= 128) return status;
     const double E0 = r.energy.front().energy.total();
     double lo = E0, hi = E0;
     for (const EnergySample& e : r.energy) lo = std::min(lo, e.energy.total()), hi = std::max(hi, e.energy.total());
@@ -176,6 +178,7 @@ void energy_study(const Options& opt, const NewtonSettings& newton, const std::s
   }
   summary.commit();
   write_table_fragment(dir + "/energy_summary.md", table, command);
+  return 0;
 }
 // [energy_study]
 
@@ -188,7 +191,9 @@ Vector reference_positions(const SceneParams& p, double T, double h_ref) {
   RunSettings run;
   run.dt = h_ref;
   run.t_end = T;
+  run.stop = &interrupt_flag();
   const RunResult r = simulate(*rk4, run, false);
+  throw_if_interrupted();
   if (r.status != RunStatus::ok) throw InputError("the RK4 reference failed: " + r.message);
   return r.x;
 }
@@ -222,12 +227,15 @@ void work_precision(const SceneParams& p, double T, const std::vector<double>& h
         RunSettings run;
         run.dt = h;
         run.t_end = T;
+        run.stop = &interrupt_flag();
         double best = INFINITY;
         RunResult r;
         for (int k = 0; k < repeats; ++k) {
           const std::unique_ptr<NewtonStepper> stepper = make_method(m, field);
           const std::clock_t start = std::clock();  // processor time: the machine's other work does not count
           r = simulate(*stepper, run, false);
+          // Stopped by a signal: the study's files are not written, so none lists the run as finished.
+          throw_if_interrupted();
           best = std::min(best, static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
         }
         const double error =
@@ -274,8 +282,8 @@ void write_stiffness(const SceneParams& params, const std::vector<double>& hs, c
 
 // The chapter's studies: energy on the undamped cloth; observed orders on (200, 20) over T = 0.4 s; work against
 // precision on the stiff cloth (5000, 20). --quick keeps the plots target fast (fewer steps, one timing).
-void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, const std::string& program,
-                 const std::string& command) {
+int report_runs(const Options& opt, const NewtonSettings& newton, bool quick, const std::string& program,
+                const std::string& command) {
   const std::string dir = opt.run.out_dir;
   // Every output of the studies, checked before the first run starts (a folder in the way is bad input).
   std::vector<std::string> outputs = {"energy_summary.dat", "orders.dat", "work_precision.dat", "methods.md",
@@ -285,7 +293,7 @@ void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, c
   prepare_outputs(dir, outputs);
   // The page's table of the implicit rows of the registry: computed from their tableaus, not measured.
   write_text_fragment(dir + "/methods.md", implicit_method_table().markdown());
-  energy_study(opt, newton, dir, program, command);
+  if (const int status = energy_study(opt, newton, dir, program, command); status != 0) return status;
 
   SceneParams report = opt.scene;
   report.stiffness = 200;
@@ -332,6 +340,7 @@ void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, c
       work_table.add_row({r.title, newton_variant_name(r.variant), format_number(r.error, 2),
                           format_number(r.seconds, 2), std::to_string(r.factorizations)});
   write_table_fragment(dir + "/work_precision.md", work_table, command);
+  return 0;
 }
 
 }  // namespace
@@ -366,6 +375,11 @@ int main(int argc, char** argv) {
                  [&] { quick = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
+    if (want_report_runs)
+      refuse_unused(opt, "--report-runs", {"--tableau", "--tol", "--damping"},
+                    "its studies run every registered method, at fixed steps, and set their own damping");
+    else if (quick)
+      throw InputError("--quick: only with --report-runs");
     {
       const std::optional<double> tol = choice.tol;
       choice = choose(tableau_argument);
@@ -380,9 +394,9 @@ int main(int argc, char** argv) {
     const long long particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
     require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles));
     if (want_report_runs) {
-      report_runs(opt, choice.newton, quick, cli.program(), reader_command(argc, argv));
-      return 0;
+      return report_runs(opt, choice.newton, quick, cli.program(), reader_command(argc, argv));
     }
+
     return run_cloth(opt.scene, opt.run, choice, cli.program());
   });
 }

@@ -16,6 +16,7 @@
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
 #include "program/output.hpp"
+#include "program/sundials.hpp"
 
 #include <arkode/arkode_arkstep.h>
 #include <boost/numeric/odeint.hpp>
@@ -162,15 +163,16 @@ Outcome odeint_dopri5(OdeSystem& system, double tol) {
 // [odeint_peers]
 
 // SUNDIALS is C: an exception must not pass through it, so an interrupt (Ctrl-C) is an unrecoverable failure of
-// the right-hand side, which ends the integration; the caller then stops at throw_if_interrupted().
+// either callback, which ends the integration; the caller then stops at throw_if_interrupted().
 int rhs_callback(realtype /*t*/, N_Vector y, N_Vector ydot, void* data) {
-  if (interrupt_flag().load() != 0) return -1;
+  if (const int stop = sundials_stop_requested()) return stop;
   static_cast<OdeSystem*>(data)->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
   return 0;
 }
 
 int jacobian_callback(realtype /*t*/, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* data, N_Vector /*tmp1*/,
                       N_Vector /*tmp2*/, N_Vector /*tmp3*/) {
+  if (const int stop = sundials_stop_requested()) return stop;
   static_cast<OdeSystem*>(data)->jacobian(N_VGetArrayPointer(y), SUNSparseMatrix_IndexPointers(J),
                                           SUNSparseMatrix_IndexValues(J), SUNSparseMatrix_Data(J));
   return 0;
@@ -178,6 +180,15 @@ int jacobian_callback(realtype /*t*/, N_Vector y, N_Vector /*fy*/, SUNMatrix J, 
 
 void check(int flag, const char* call) {
   if (flag < 0) throw std::runtime_error(std::string("SUNDIALS ") + call + " failed with flag " + std::to_string(flag));
+}
+
+// A failed run's note, in the model page's terms: the status (with its failure kind), the step that could not be
+// taken and the last good time, and the library's flag: "step_failed (newton_not_converged) at step 1 after
+// t = 0 s, ARK_CONV_FAILURE".
+std::string failure_note(const SundialsEnd& end, long steps_taken, double t) {
+  std::string note = run_status_name(end.status);
+  if (end.status == RunStatus::step_failed) note.append(" (").append(step_failure_name(end.failure)).append(")");
+  return note + " at step " + std::to_string(steps_taken + 1) + " after t = " + format_number(t, 3) + " s, " + end.flag;
 }
 
 // [sundials_peers]
@@ -209,7 +220,7 @@ Outcome sundials_run(OdeSystem& system, Sundials peer, double tol, long long ste
     check(CVodeSetMaxNumSteps(mem, 1000000), "CVodeSetMaxNumSteps");
     const int flag = CVode(mem, T, y, &t, CV_NORMAL);
     CVodeGetNumSteps(mem, &steps_taken);
-    if (flag < 0) out = {false, "CVode returned " + std::to_string(flag) + " at t = " + format_number(t, 3), 0, {}};
+    if (flag < 0) out = {false, failure_note(sundials_end(flag, true, true), steps_taken, t), 0, {}};
     CVodeFree(&mem);
   } else {
     void* mem = ARKStepCreate(nullptr, rhs_callback, 0.0, y, context);
@@ -230,10 +241,10 @@ Outcome sundials_run(OdeSystem& system, Sundials peer, double tol, long long ste
     else
       check(ARKStepSetMaxNonlinIters(mem, 20), "ARKStepSetMaxNonlinIters");
     check(ARKStepSetMaxNumSteps(mem, 1000000), "ARKStepSetMaxNumSteps");
-    const int flag = ARKStepEvolve(mem, T, y, &t, ARK_NORMAL);
+    // Step by step to T: the last step's own value, not ARKODE's interpolant (program/sundials.hpp).
+    const int flag = arkode_fixed_steps_to(mem, T, T / static_cast<double>(steps), y, t);
     ARKStepGetNumSteps(mem, &steps_taken);
-    if (flag < 0)
-      out = {false, "ARKStepEvolve returned " + std::to_string(flag) + " at t = " + format_number(t, 3), 0, {}};
+    if (flag < 0) out = {false, failure_note(sundials_end(flag, false, true), steps_taken, t), 0, {}};
     ARKStepFree(&mem);
     ARKodeButcherTable_Free(euler);
   }
@@ -300,11 +311,7 @@ int main(int argc, char** argv) {
   cli.add_switch("--quick", "only the runs that decide the comparison, each timed once or twice (for the plots target)",
                  [&] { quick = true; });
   cli.add_value("--runs", "N", "timed runs of each configuration, the fastest kept (default 3)",
-                [&](const std::string& s) {
-                  const long long n = parse_integer(s);
-                  if (n < 1 || n > 100) throw InputError("expected a whole number from 1 to 100, got '" + s + "'");
-                  runs = static_cast<int>(n);
-                });
+                [&](const std::string& s) { runs = static_cast<int>(parse_count(s, 1, 100)); });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     const std::string dir = opt.run.out_dir;
@@ -475,7 +482,7 @@ int main(int argc, char** argv) {
     std::string dat = "# side program setting steps cpu_seconds error_at_T\n";
     for (const Row& r : rows) {
       table.add_row({r.program, r.setting, r.ok ? std::to_string(r.steps) : "-", format("%.3g", r.seconds),
-                     r.ok ? format("%.2g", r.error) : "failed: " + r.note});
+                     r.ok ? format("%.2g", r.error) : r.note});
       dat += format("\"%s\" \"%s\" \"%s\" %lld %.6e %.6e\n", r.side.c_str(), r.program.c_str(), r.setting.c_str(),
                     r.steps, r.seconds, r.ok ? r.error : NAN);
     }

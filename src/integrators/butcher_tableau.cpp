@@ -4,10 +4,12 @@
 
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "base/parse_number.hpp"
 #include "base/text.hpp"
 #include "base/text_file.hpp"
 #include "integrators/order_conditions.hpp"
 
+#include <cfloat>
 #include <cmath>
 #include <sstream>
 
@@ -98,20 +100,29 @@ void validate(const ButcherTableau& t) {
   }
 }
 
-// A number as a decimal or a fraction p/q, so that tableaus can be written as exactly as they are printed.
-bool parse_tableau_entry(const std::string& token, double& value) {
-  const auto slash = token.find('/');
-  const auto number = [](const std::string& s, double& out) {
-    if (s.empty()) return false;
-    char* end = nullptr;
-    out = std::strtod(s.c_str(), &end);
-    return end == s.c_str() + s.size() && std::isfinite(out);
+// A number as a decimal or a fraction p/q, so that tableaus can be written as exactly as they are printed; each
+// number, and the fraction's value, by the rule of every number the book reads (base/parse_number.hpp).
+double parse_tableau_entry(const std::string& token) {
+  const auto refuse = [&token](const std::string& why) {
+    throw InputError("'" + escaped(token) + "' is not a number the book reads (" + why +
+                     "): write decimal or hexadecimal numbers, or fractions p/q of them");
   };
-  if (slash == std::string::npos) return number(token, value);
-  double p = 0, q = 0;
-  if (!number(token.substr(0, slash), p) || !number(token.substr(slash + 1), q) || q == 0) return false;
-  value = p / q;
-  return true;
+  const auto number = [&refuse](const std::string& text) {
+    try {
+      return parse_number(text);
+    } catch (const InputError& e) {
+      refuse(e.what());
+    }
+    return 0.0;
+  };
+  const auto slash = token.find('/');
+  if (slash == std::string::npos) return number(token);
+  const double p = number(token.substr(0, slash)), q = number(token.substr(slash + 1));
+  if (q == 0) refuse("a fraction with denominator 0");
+  const double value = p / q;
+  if (!std::isfinite(value) || (value != 0 && std::abs(value) < DBL_MIN) || (value == 0 && p != 0))
+    refuse("the fraction's value is outside the normal range of a double");
+  return value + 0.0;
 }
 
 ButcherTableau parse_tableau_entries(const std::string& text, const std::string& source_name) {
@@ -164,9 +175,11 @@ ButcherTableau parse_tableau_entries(const std::string& text, const std::string&
       std::string token;
       std::istringstream entries(weights ? line.substr(line.find(first) + first.size()) : line);
       while (entries >> token) {
-        double value = 0;
-        if (!parse_tableau_entry(token, value)) fail("'" + token + "' is not a number (write decimals or fractions p/q)");
-        values.push_back(value);
+        try {
+          values.push_back(parse_tableau_entry(token));
+        } catch (const InputError& e) {
+          fail(e.what());
+        }
       }
       if (first == "b") {
         b = values;

@@ -57,8 +57,9 @@ ButcherTableau parse_tableau(const std::string& text, const std::string& source)
 /// other tableaus than the explicit engine (Chapter 9's diagonally implicit ones), which validate them their way.
 ButcherTableau parse_tableau_entries(const std::string& text, const std::string& source);
 
-/// One entry of the format: a finite decimal or a fraction p/q. False when `token` is neither.
-bool parse_tableau_entry(const std::string& token, double& value);
+/// One entry of the format: a number (base/parse_number.hpp: decimal or hexadecimal, finite, normal) or a fraction
+/// p/q of two, whose value must be one too. Throws InputError saying what is wrong otherwise.
+double parse_tableau_entry(const std::string& token);
 
 /// The whole text of a tableau file; throws InputError when it cannot be read.
 std::string read_tableau_text(const std::string& path);

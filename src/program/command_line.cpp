@@ -10,8 +10,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -25,42 +23,7 @@ namespace cloth {
 
 namespace {
 
-// strtod and strtoll skip leading blanks; a value with blanks around it is a quoting slip, so it is refused whole.
-bool has_blank(const std::string& text) { return text.find_first_of(" \t\n\r\f\v") != std::string::npos; }
-
 std::string quoted(const std::string& text) { return "'" + escaped(text) + "'"; }
-
-}  // namespace
-
-double parse_number(const std::string& text) {
-  if (text.empty()) throw InputError("expected a number, got an empty value");
-  if (has_blank(text)) throw InputError("expected a number, got " + quoted(text));
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size()) throw InputError("expected a number, got " + quoted(text));
-  if (std::isnan(value) || (std::isinf(value) && errno != ERANGE))
-    throw InputError("expected a finite number, got " + quoted(text));
-  if (std::isinf(value))
-    throw InputError(quoted(text) + " is too large to represent: expected a number below 1.8e308, the largest double");
-  // strtod sets ERANGE when the number underflows, to a subnormal or to zero: refused, since it has lost digits
-  // (and a subnormal slows every operation on it a hundredfold).
-  if ((errno == ERANGE && value == 0) || (value != 0 && std::abs(value) < DBL_MIN))
-    throw InputError(quoted(text) + " is too small to represent normally (below 2.2e-308, the smallest normal "
-                     "double): expected 0 or a number of larger magnitude");
-  return value + 0.0;  // -0 is 0
-}
-
-long long parse_integer(const std::string& text) {
-  char* end = nullptr;
-  errno = 0;
-  const long long value = std::strtoll(text.c_str(), &end, 10);
-  if (text.empty() || has_blank(text) || end != text.c_str() + text.size() || errno == ERANGE)
-    throw InputError("expected a whole number, got " + quoted(text));
-  return value;
-}
-
-namespace {
 
 double positive(const std::string& text) {
   const double x = parse_number(text);
@@ -170,9 +133,7 @@ void set_common(Options& opt, std::string& grid_text, const std::string& flag, c
   else if (flag == "--dt") opt.run.dt = positive(value);
   else if (flag == "--t-end") opt.run.t_end = positive(value);
   else if (flag == "--frames") {
-    const long long n = parse_integer(value);
-    if (n < 1 || n > 100000) throw InputError("expected a whole number from 1 to 100000, got " + quoted(value));
-    opt.run.frames = static_cast<int>(n);
+    opt.run.frames = static_cast<int>(parse_count(value, 1, 100000));
   } else if (flag == "--out") {
     if (value.empty()) throw InputError("expected a folder name, got an empty value");
     opt.run.out_dir = value;
@@ -231,6 +192,9 @@ std::string CommandLine::usage() const {
       std::string accepted = f.accepted;
       // Without --dt (an adaptive program) T is not bounded below by a step.
       if (const auto at = accepted.find(", >= dt"); at != std::string::npos && !uses("--dt")) accepted.erase(at);
+      // Nor are its frames one per step at most: it interpolates each at its time (the model page, frames.dat).
+      if (const auto at = accepted.find("(at most one per step)"); at != std::string::npos && !uses("--dt"))
+        accepted.replace(at, 22, "(interpolated at their times)");
       std::string fallback = std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback);
       for (const auto& [name, value] : defaults_)
         if (name == f.name) fallback = value;
@@ -288,6 +252,7 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
                          (takes_value ? " (" + quoted(earlier_value) + ", then " + quoted(value) + ")" : "") +
                          ": expected each flag at most once");
     given.emplace_back(flag, value);
+    opt.given.push_back(flag);
     try {
       if (chapter != nullptr && !takes_value) chapter->set_switch();
       else if (chapter != nullptr) chapter->set_value(value);
@@ -317,8 +282,34 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
       throw InputError("--t-end / --dt: more than 1e9 steps asked for; expected at most 1e9");
   }
   require_representable(opt.scene, opt.run);
-  if (uses("--dt") || uses("--t-end")) require_run_memory(opt.scene, opt.run, explicit_bytes_per_particle());
+  // What one recorded run by an explicit method holds: a fixed-step program's frames are at most one per step, an
+  // adaptive program's (no --dt, but --frames) are interpolated, all of them; a program with a horizon that records
+  // neither holds the scene and the method.
+  if (uses("--dt")) {
+    RunSettings recorded = opt.run;
+    if (!uses("--frames")) recorded.frames = 0;  // a program without --frames records none
+    require_run_memory(opt.scene, recorded, explicit_bytes_per_particle());
+  }
+  else if (uses("--frames"))
+    require_interpolated_run_memory(opt.scene, opt.run, explicit_bytes_per_particle());
+  else if (uses("--t-end"))
+    require_memory(static_cast<double>(opt.scene.grid.M) * opt.scene.grid.N * explicit_bytes_per_particle(), "--grid",
+                   "a run on a " + std::to_string(opt.scene.grid.M) + "x" + std::to_string(opt.scene.grid.N) + " grid",
+                   ": expected a smaller grid");
   return opt;
+}
+
+bool Options::has(const std::string& flag) const { return std::find(given.begin(), given.end(), flag) != given.end(); }
+
+void refuse_unused(const Options& opt, const std::string& mode, std::initializer_list<const char*> unused,
+                   const std::string& why) {
+  for (const char* flag : unused)
+    if (opt.has(flag)) {
+      std::string message = flag;
+      message.append(": ").append(mode).append(" does not use it (").append(why).append("): expected ");
+      message.append(mode).append(" without ").append(flag);
+      throw InputError(message);
+    }
 }
 
 namespace {

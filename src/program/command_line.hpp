@@ -2,6 +2,7 @@
 // run), chapter-specific flags on top, and strict validation (one clear line and exit status 2 on bad input).
 #pragma once
 
+#include "base/parse_number.hpp"  // parse_number, parse_integer, parse_count: the flags' one rule
 #include "integrators/simulate.hpp"
 #include "model/scene.hpp"
 
@@ -17,7 +18,17 @@ namespace cloth {
 struct Options {
   SceneParams scene;
   RunSettings run;  ///< run.stop points at the program's interrupt flag (program/interrupt.hpp)
+  std::vector<std::string> given;  ///< every flag on the command line (common and the chapter's), in order
+
+  /// Whether `flag` was on the command line.
+  [[nodiscard]] bool has(const std::string& flag) const;
 };
+
+/// A mode of a program (`--experiments`, `--report-runs`) that sets what some flags would set refuses them rather
+/// than ignoring them: throws InputError "<flag>: <mode> does not use it (<why>): expected <mode> without <flag>"
+/// for the first of `unused` that `opt` was given.
+void refuse_unused(const Options& opt, const std::string& mode, std::initializer_list<const char*> unused,
+                   const std::string& why);
 
 /// Parses the common flags and a chapter's own. Usage:
 ///   CommandLine cli("ch03_runge_kutta", "Runge-Kutta methods from their Butcher tableau.");
@@ -69,11 +80,6 @@ class CommandLine {
 
 /// Thrown by CommandLine::parse after it printed the usage for `--help`.
 struct HelpRequested {};
-
-/// Strict number parsing for flags: the whole text must be a finite number in the normal range of a double
-/// (a number too small to represent normally is refused saying so). Throw InputError otherwise.
-double parse_number(const std::string& text);
-long long parse_integer(const std::string& text);
 
 /// Creates the output folder (and its parents) and checks that it can be written. Throws InputError when it
 /// cannot be created or written. (program/output.hpp declares the form that also checks the outputs' names.)

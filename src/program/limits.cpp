@@ -60,13 +60,24 @@ double implicit_bytes_per_particle(long long particles) {
   return 16e3 * (1 + std::log2(std::max(1.0, static_cast<double>(particles) / 1e4)) / 4);
 }
 
-void require_run_memory(const SceneParams& scene, const RunSettings& settings, double bytes_per_particle,
-                        const std::string& frames_flag, int runs_held) {
+double sundials_klu_bytes_per_particle(long long particles) {
+  // Largest resident sizes of ch09_sundials_benchmark (CVODE BDF, KLU) over its first steps: 41 MB at 30x30,
+  // 122 MB at 50x50, 276 MB at 70x70, 728 MB at 100x100, above 2.1 GB at 150x150, so 45, 49, 56, 73 and more than
+  // 95 kB a particle: KLU's fill of the 6n system grows faster than the implicit methods' n log n. With a margin.
+  return 48e3 * (1 + std::sqrt(static_cast<double>(particles) / 1e4));
+}
+
+namespace {
+
+// The memory check of a recorded run: the scene and the method (`bytes_per_particle`), the energy samples of a
+// fixed-step run (one per step), the frames (at most one per step, or every frame asked for when interpolated).
+void check_run_memory(const SceneParams& scene, const RunSettings& settings, double bytes_per_particle,
+                      bool interpolated, const std::string& frames_flag, int runs_held) {
   const auto particles = static_cast<double>(scene.grid.M) * scene.grid.N;
-  const auto steps = static_cast<double>(step_count(settings));
-  const auto frames = static_cast<double>(frame_count(settings));
+  const auto steps = interpolated ? 0.0 : static_cast<double>(step_count(settings));
+  const auto frames = static_cast<double>(interpolated ? settings.frames : frame_count(settings));
   const double model = runs_held * particles * bytes_per_particle;
-  const double samples = runs_held * (steps + 1) * sizeof(EnergySample);
+  const double samples = interpolated ? 0.0 : runs_held * (steps + 1) * sizeof(EnergySample);
   const double recorded_frames = runs_held * (frames + 1) * (3 * particles * sizeof(double) + sizeof(Frame));
   const double total = model + samples + recorded_frames;
   const std::string grid = std::to_string(scene.grid.M) + "x" + std::to_string(scene.grid.N);
@@ -79,6 +90,18 @@ void require_run_memory(const SceneParams& scene, const RunSettings& settings, d
   else
     require_memory(total, frames_flag, "a run recording " + format_number(frames + 1, 6) + " frames of a " + grid +
                                            " grid", ": expected fewer frames or a smaller grid");
+}
+
+}  // namespace
+
+void require_run_memory(const SceneParams& scene, const RunSettings& settings, double bytes_per_particle,
+                        const std::string& frames_flag, int runs_held) {
+  check_run_memory(scene, settings, bytes_per_particle, false, frames_flag, runs_held);
+}
+
+void require_interpolated_run_memory(const SceneParams& scene, const RunSettings& settings,
+                                     double bytes_per_particle) {
+  check_run_memory(scene, settings, bytes_per_particle, true, "--frames", 1);
 }
 
 void require_representable(const SceneParams& scene, const RunSettings& settings) {

@@ -39,6 +39,18 @@ double implicit_bytes_per_particle(long long particles);
 void require_run_memory(const SceneParams& scene, const RunSettings& settings, double bytes_per_particle,
                         const std::string& frames_flag = "--frames", int runs_held = 1);
 
+/// The same for a run that chooses its own steps (Chapter 8's adaptive driver): its frames are interpolated at
+/// the settings.frames + 1 times asked for, all of them, whatever the steps; its energy samples, one per accepted
+/// step, are not known before it runs and are not counted.
+void require_interpolated_run_memory(const SceneParams& scene, const RunSettings& settings,
+                                     double bytes_per_particle);
+
+/// The memory of SUNDIALS' implicit integrators with KLU on the cloth's first-order system y = (x, v), 6n
+/// unknowns, per particle: the sparse Jacobian, the Newton matrix I - gamma J and KLU's LU factors of it, beside
+/// the integrator's vectors. Measured like the figures above (ch09_sundials_benchmark, CVODE BDF): the factors of
+/// the 6n system fill in faster than the implicit methods' n log n, about like n^1.5.
+double sundials_klu_bytes_per_particle(long long particles);
+
 
 /// Refuses a scene and run whose numbers at t = 0 a double cannot hold, naming the flag: squared distances that
 /// overflow (`--spacing`, and `--v0` and `--t-end` through the divergence bound R of the driver) or underflow

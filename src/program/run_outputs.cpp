@@ -21,6 +21,27 @@ int stop_signal(const RunSettings& settings) {
 
 }  // namespace
 
+void append_status(KeyValues& kv, const RunResult& result, int signal) {
+  const auto num = [](double x) { return format_number(x, 10); };
+  if (result.status == RunStatus::interrupted || (result.status == RunStatus::ok && signal != 0)) {
+    kv.emplace_back("status", "interrupted");
+    kv.emplace_back("signal", signal_name(signal != 0 ? signal : SIGINT));
+    kv.emplace_back("reason", result.status == RunStatus::interrupted
+                                  ? "stopped by the signal after step " + std::to_string(result.steps) + ", t = " +
+                                        format_number(result.t) + " s"
+                                  : "the signal came after the last step, while the outputs were written; every "
+                                    "output file is whole");
+  } else {
+    kv.emplace_back("status", run_status_name(result.status));
+    if (result.status == RunStatus::step_failed) kv.emplace_back("failure", step_failure_name(result.failure));
+    if (result.status != RunStatus::ok) {
+      kv.emplace_back("failed_step", std::to_string(result.failed_step));
+      kv.emplace_back("failed_t", num(result.failed_t));
+      kv.emplace_back("reason", result.reason);
+    }
+  }
+}
+
 std::vector<std::string> run_output_names() { return {"final.dat", "energy.dat", "frames.dat", "run.txt"}; }
 
 void write_outputs(const RunResult& result, const Stepper& stepper, const RunSettings& settings,
@@ -44,7 +65,9 @@ void write_outputs(const RunResult& result, const Stepper& stepper, const RunSet
       {"v0", num(p.initial_velocity_z)},
       {"dt", num(settings.dt)},
       {"t_end", num(settings.t_end)},
-      {"frames", std::to_string(frame_count(settings))},
+      // What frames.dat holds after t = 0: for a fixed step at most one frame per step (frame_count), for an
+      // adaptive run every frame asked for (interpolated), for a run that stopped early the frames up to then.
+      {"frames", std::to_string(result.frames.empty() ? 0 : result.frames.size() - 1)},
       {"steps", std::to_string(result.steps)},
       {"t_reached", num(result.t)},
       {"wall_seconds", num(result.wall_seconds)},
@@ -63,40 +86,28 @@ void write_outputs(const RunResult& result, const Stepper& stepper, const RunSet
     kv.insert(v0 + 1, {"swing", num(p.initial_swing)});
   }
   kv.insert(kv.end(), extra.begin(), extra.end());
-  const int signal = stop_signal(settings);
-  if (result.status == RunStatus::interrupted || (result.status == RunStatus::ok && signal != 0)) {
-    kv.emplace_back("status", "interrupted");
-    kv.emplace_back("signal", signal_name(signal != 0 ? signal : SIGINT));
-    kv.emplace_back("reason", result.status == RunStatus::interrupted
-                                  ? "stopped by the signal after step " + std::to_string(result.steps) + ", t = " +
-                                        format_number(result.t) + " s"
-                                  : "the signal came after the last step, while the outputs were written; every "
-                                    "output file is whole");
-  } else {
-    kv.emplace_back("status", run_status_name(result.status));
-    if (result.status == RunStatus::step_failed) kv.emplace_back("failure", step_failure_name(result.failure));
-    if (result.status != RunStatus::ok) {
-      kv.emplace_back("failed_step", std::to_string(result.failed_step));
-      kv.emplace_back("failed_t", num(result.failed_t));
-      kv.emplace_back("reason", result.reason);
-    }
-  }
+  append_status(kv, result, stop_signal(settings));
   write_key_values(dir + "run.txt", kv);
 }
 
 int report(const RunResult& result, const Stepper& stepper, const std::string& program) {
+  if (result.status != RunStatus::ok) return report_stop(result, stepper.name(), program);
+  std::printf("%s: %s, %lld steps to t = %g s in %.3f s, %lld force evaluations\n", program.c_str(),
+              stepper.name().c_str(), result.steps, result.t, result.wall_seconds, result.counters.rhs_evaluations);
+  return 0;
+}
+
+int report_stop(const RunResult& result, const std::string& method, const std::string& program) {
   switch (result.status) {
     case RunStatus::ok:
-      std::printf("%s: %s, %lld steps to t = %g s in %.3f s, %lld force evaluations\n", program.c_str(),
-                  stepper.name().c_str(), result.steps, result.t, result.wall_seconds, result.counters.rhs_evaluations);
       return 0;
     case RunStatus::diverged:
     case RunStatus::step_failed:
-      std::cerr << program << ": " << stepper.name() << " " << result.message << "\n";
+      std::cerr << program << ": " << method << " " << result.message << "\n";
       return 3;
     case RunStatus::interrupted: {
       const int signal = interrupt_signal() != 0 ? interrupt_signal() : SIGINT;
-      std::cerr << program << ": " << stepper.name() << " interrupted by " << signal_name(signal) << " after step "
+      std::cerr << program << ": " << method << " interrupted by " << signal_name(signal) << " after step "
                 << result.steps << ", t = " << format_number(result.t) << " s; the outputs up to then are kept\n";
       return 128 + signal;
     }

@@ -2,7 +2,7 @@
 // run.txt), the one-line summary, and the exit status.
 //
 // run.txt is `key = value` lines: the scene (grid, spacing, mass, K, damping, damping_model, pins, v0), the run
-// (method, dt, t_end, frames, steps, t_reached, wall_seconds) and its work counters (rhs_evaluations,
+// (method, dt, t_end, frames: the frames frames.dat holds after t = 0, steps, t_reached, wall_seconds) and its work counters (rhs_evaluations,
 // newton_iterations, newton_iterations_per_step, jacobian_assemblies, factorizations, cg_iterations), then the
 // chapter's own keys, and last how the run ended:
 //   status = ok | diverged | step_failed | interrupted
@@ -33,6 +33,11 @@ using KeyValues = std::vector<std::pair<std::string, std::string>>;
 void write_outputs(const RunResult& result, const Stepper& stepper, const RunSettings& settings,
                    const KeyValues& extra = {});
 
+/// Appends run.txt's closing status block for `result` (the lines above, from `status` on); `signal` is the stop
+/// request the run saw (0: none), which also marks a run that finished as the signal came as interrupted.
+/// write_outputs closes run.txt with it; a program that writes its own run.txt (a benchmark's) does the same.
+void append_status(KeyValues& kv, const RunResult& result, int signal);
+
 /// The names write_outputs writes, for prepare_outputs.
 std::vector<std::string> run_output_names();
 
@@ -41,7 +46,11 @@ std::vector<std::string> run_output_names();
 /// 128 + signal (130, 143) interrupted.
 int report(const RunResult& result, const Stepper& stepper, const std::string& program);
 
-/// write_outputs, then report; also says on stdout when frames.dat holds fewer frames than `--frames` asked for
+/// report's line and status for a run that did not finish (nothing for one that did: status 0), its method named
+/// `method`: for a program whose run is not a Stepper's (a library's integrator).
+int report_stop(const RunResult& result, const std::string& method, const std::string& program);
+
+/// write_outputs, then report; also says on stdout when frames.dat holds fewer frames than --frames asked for
 /// (at most one per step). The one call a single-run program makes after simulate.
 int finish_run(const RunResult& result, const Stepper& stepper, const RunSettings& settings,
                const std::string& program, const KeyValues& extra = {});
