@@ -380,3 +380,68 @@ TEST_CASE("ch09_implicit_runge_kutta: a controlled TR-BDF2 run reports its Newto
   }
 }
 #endif
+
+#ifdef CLOTH_HAVE_CH10_CLOTH
+TEST_CASE("ch10_cloth: bad input gives status 2, one line naming the flag, nothing written") {
+  expect_refused("ch10_cloth", shared_flag_cases());
+}
+
+TEST_CASE("ch10_cloth: an unknown method lists every registered name, and a method refuses the flags of another") {
+  std::vector<std::string> every_name = {"--method", "'rk5'"};
+  for (const std::string& name : cloth::method_names()) every_name.push_back(name);
+  expect_refused("ch10_cloth",
+                 {
+                     {{"--method", "rk5"}, every_name},
+                     {{"--method", "xpbd", "--newton", "one"}, {"--newton", "xpbd", "no Newton iteration"}},
+                     {{"--method", "rk4", "--jacobian", "exact"}, {"--jacobian", "rk4", "no Newton iteration"}},
+                     {{"--method", "rk4", "--iterations", "5"}, {"--iterations", "rk4", "local_global", "xpbd"}},
+                     {{"--method", "small_steps", "--iterations", "5"}, {"--iterations", "one iteration per substep"}},
+                     {{"--method", "local_global", "--substeps", "5"}, {"--substeps", "local_global", "small_steps"}},
+                     {{"--method", "xpbd", "--substeps", "0"}, {"--substeps", "1 to 100000"}},
+                     {{"--method", "xpbd", "--damping", "1", "--damping-model", "report"},
+                      {"--method xpbd", "--damping-model projected"}},
+                     {{"--newton", "quasi"}, {"--newton", "'quasi'", "full", "modified", "one"}},
+                     {{"--newton", "one", "--newton-max-iter", "5"}, {"--newton-max-iter", "one iteration"}},
+                     {{"--linear-solver", "cg", "--jacobian", "exact"}, {"--linear-solver cg", "definite"}},
+                     {{"--method", "sdirk2", "--newton-tol", "2"}, {"--newton-tol", "(0, 1)"}},
+                 });
+}
+
+TEST_CASE("ch10_cloth: every registered method runs by name and writes the standard outputs with its settings") {
+  for (const std::string& method : cloth::method_names()) {
+    const ProgramFolder folder;
+    const ProgramRun run =
+        folder.run("ch10_cloth", {"--method", method, "--grid", "5x5", "--dt", "0.005", "--t-end", "0.02", "--out", "run"});
+    CAPTURE(method);
+    CAPTURE(run.err);
+    REQUIRE(run.status == 0);
+    for (const char* file : {"final.dat", "energy.dat", "frames.dat", "run.txt"})
+      CHECK(fs::is_regular_file(folder.cwd() / "run" / file));
+    const std::string txt = read_text(folder.cwd() / "run" / "run.txt");
+    CHECK(txt.find("method = " + method + "\n") != std::string::npos);
+    CHECK(txt.find("largest_strain_frames = ") != std::string::npos);
+    CHECK(txt.find("status = ok") != std::string::npos);
+  }
+  const ProgramFolder folder;
+  const ProgramRun run = folder.run("ch10_cloth", {"--method", "xpbd", "--iterations", "3", "--substeps", "4",
+                                                   "--grid", "5x5", "--t-end", "0.02", "--out", "run"});
+  REQUIRE(run.status == 0);
+  const std::string txt = read_text(folder.cwd() / "run" / "run.txt");
+  CHECK(txt.find("iterations = 3\nsubsteps = 4\n") != std::string::npos);
+  const ProgramRun implicit = folder.run("ch10_cloth", {"--method", "bdf2", "--newton", "one", "--grid", "5x5",
+                                                        "--t-end", "0.02", "--out", "implicit"});
+  REQUIRE(implicit.status == 0);
+  CHECK(read_text(folder.cwd() / "implicit" / "run.txt").find("newton = one\nlinear_solver = ldlt\n") !=
+        std::string::npos);
+}
+#endif
+
+#ifdef CLOTH_HAVE_CH10_XPBD
+TEST_CASE("ch10_xpbd: an experiment program on its own scenes takes --out only") {
+  expect_refused("ch10_xpbd", {
+                                  {{"--K", "5"}, {"unknown flag '--K'"}},
+                                  {{"--method", "xpbd"}, {"unknown flag '--method'"}},
+                                  {{"--out"}, {"--out: missing value"}},
+                              });
+}
+#endif

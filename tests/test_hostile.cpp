@@ -193,6 +193,13 @@ std::vector<ProgramOutputs> every_output() {
 #ifdef CLOTH_HAVE_CH10_PEERS
       {"ch10_peers", {"--quick"}, {"peers.md", "peers_ratio.md", "peers_check.md", "peers.dat"}},
 #endif
+#ifdef CLOTH_HAVE_CH10_CLOTH
+      {"ch10_cloth", {}, run_files},
+      {"ch10_cloth", {"--method", "xpbd", "--substeps", "4"}, run_files},
+#endif
+#ifdef CLOTH_HAVE_CH10_XPBD
+      {"ch10_xpbd", {}, {"xpbd_gap.md", "xpbd_strain.md"}},
+#endif
   };
 }
 
@@ -261,6 +268,17 @@ constexpr std::size_t folder_cases_ch10 = 0;
 constexpr std::size_t folder_cases_ch10_peers = 4 + 1;
 #else
 constexpr std::size_t folder_cases_ch10_peers = 0;
+#endif
+
+#ifdef CLOTH_HAVE_CH10_CLOTH
+constexpr std::size_t folder_cases_ch10_cloth = 2 * (4 + 1);
+#else
+constexpr std::size_t folder_cases_ch10_cloth = 0;
+#endif
+#ifdef CLOTH_HAVE_CH10_XPBD
+constexpr std::size_t folder_cases_ch10_xpbd = 2 + 1;
+#else
+constexpr std::size_t folder_cases_ch10_xpbd = 0;
 #endif
 
 Setup folder_at(const std::string& path) {
@@ -338,7 +356,8 @@ std::vector<Refused> cases_to_run(const std::vector<Refused>& cases) {
 TEST_CASE("a folder in the way of any output of ch01-ch04, ch08 and ch10, in any mode, is bad input: status 2, nothing "
           "written") {
   const std::vector<Refused> cases = in_the_way_cases(every_output());
-  CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08 + folder_cases_ch10 + folder_cases_ch10_peers);
+  CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08 + folder_cases_ch10 + folder_cases_ch10_peers +
+                       folder_cases_ch10_cloth + folder_cases_ch10_xpbd);
   expect_refused(cases_to_run(cases));
 }
 

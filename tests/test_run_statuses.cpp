@@ -242,6 +242,9 @@ TEST_CASE("a full disk during a run: status 4, one line naming the file, every f
       {"ch02_explicit_euler", {"--single-spring", "--t-end", "20"}},
       {"ch03_runge_kutta", {"--t-end", "0.2"}},
       {"ch04_implicit_euler", {"--t-end", "0.2"}},
+#ifdef CLOTH_HAVE_CH10_CLOTH
+      {"ch10_cloth", {"--method", "small_steps", "--t-end", "0.2"}},
+#endif
   };
   for (const DiskCase& c : cases) {
     const SmallDisk disk;
@@ -437,6 +440,10 @@ TEST_CASE("SIGINT and SIGTERM during a run: the run stops at the next step, keep
       {"ch02_explicit_euler", {"--method", "symplectic_euler", "--t-end", "1000", "--dt", "1e-3"}, SIGINT, "symplectic_euler"},
       {"ch03_runge_kutta", {"--t-end", "1000", "--dt", "1e-3"}, SIGTERM, "rk4"},
       {"ch04_implicit_euler", {"--t-end", "1000"}, SIGINT, "implicit_euler"},
+#ifdef CLOTH_HAVE_CH10_CLOTH
+      {"ch10_cloth", {"--method", "xpbd", "--t-end", "1000", "--dt", "1e-3"}, SIGTERM, "xpbd"},
+      {"ch10_cloth", {"--method", "local_global", "--t-end", "1000", "--dt", "1e-3"}, SIGINT, "local_global"},
+#endif
   };
   for (const SignalCase& c : cases) {
     const ProgramFolder folder;
@@ -593,6 +600,13 @@ TEST_CASE("memory limits: under ulimit -v a run that would not fit is refused na
       {"ch09_implicit_runge_kutta", {"--grid", "300x300"}, 2,
        "ch09_implicit_runge_kutta: --grid: a run on a 300x300 grid needs about * GB, more than the * a run may use "
        "(what the address-space limit (ulimit -v) of 1.02 GB leaves beside the program): expected a smaller grid\n"},
+#ifdef CLOTH_HAVE_CH10_CLOTH
+      // ch10_cloth checks the implicit methods' matrices only for the methods that factor one.
+      {"ch10_cloth", {"--method", "bdf2", "--grid", "300x300"}, 2,
+       "ch10_cloth: --grid: a run on a 300x300 grid needs about * GB, more than the * a run may use (what the "
+       "address-space limit (ulimit -v) of 1.02 GB leaves beside the program): expected a smaller grid\n"},
+      {"ch10_cloth", {"--method", "xpbd", "--grid", "100x100", "--t-end", "0.01"}, 0, ""},
+#endif
   };
   for (const LimitCase& c : cases) {
     const ProgramFolder folder;

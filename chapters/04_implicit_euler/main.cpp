@@ -9,6 +9,7 @@
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
 #include "program/limits.hpp"
+#include "program/method_flags.hpp"
 #include "program/output.hpp"
 #include "program/progress.hpp"
 #include "program/run_outputs.hpp"
@@ -25,17 +26,6 @@
 using namespace cloth;
 
 namespace {
-
-// validate(NewtonSettings) with its message prefixed by the flags that chose the settings it names.
-void check_settings(const NewtonSettings& newton, const Scene& scene) {
-  try {
-    validate(newton, scene);
-  } catch (const InputError& e) {
-    throw InputError(std::string("--newton ") + newton_variants().name(newton.variant) + " --linear-solver " +
-                     linear_solvers().name(newton.solver) + " --jacobian " +
-                     stiffness_treatments().name(newton.treatment) + ": " + e.what());
-  }
-}
 
 struct Outcome {
   int status;
@@ -353,64 +343,26 @@ int report_runs(const Options& opt, const std::function<NewtonSettings(double, d
   return 0;
 }
 
-// [jacobian_default]
-// Without --jacobian, the most exact matrix the chosen solver can take: CG needs a symmetric positive definite
-// matrix, LDL^T a symmetric one (the damper's d/dx breaks symmetry), LDU and LU take the exact one. An explicit
-// incompatible choice is refused by validate(NewtonSettings) with exit status 2.
-StiffnessTreatment default_treatment(LinearSolverKind solver, bool damped) {
-  if (solver == LinearSolverKind::cg) return StiffnessTreatment::definite;
-  if (solver == LinearSolverKind::ldlt && damped) return StiffnessTreatment::symmetric;
-  return StiffnessTreatment::exact;
-}
-// [jacobian_default]
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  NewtonSettings newton;
-  std::optional<StiffnessTreatment> jacobian;
+  NewtonFlags flags;
   bool want_report_runs = false;
   CommandLine cli("ch04_implicit_euler",
                   "Chapter 4: implicit Euler on the report's cloth, each step solved by Newton's method on the\n"
                   "analytic sparse Jacobian J = M - h df/dv - h^2 df/dx.");
-  cli.add_value("--newton", newton_variants().accepted("|"),
-                "full Newton (default), modified (a factorization kept while it converges fast, Chapter 9), or one: "
-                "Baraff & Witkin's single linearised step", [&](const std::string& s) { newton.variant = newton_variants().parse(s); });
-  cli.add_value("--linear-solver", linear_solvers().accepted("|"),
-                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, Eigen's pivoting sparse LU, or automatic "
-                "(the default: ldu for the exact Jacobian of a damped cloth, ldlt otherwise)",
-                [&](const std::string& s) { newton.solver = linear_solvers().parse(s); });
-  cli.add_value("--newton-tol", "TOL", "Newton's stopping tolerance on |dv| and |r| (default 1e-8)",
-                [&](const std::string& s) {
-                  const double t = parse_number(s);
-                  if (!(t > 0) || t >= 1) throw InputError("expected a number in (0, 1), got " + s);
-                  newton.tolerance = t;
-                });
-  cli.add_value("--newton-max-iter", "N",
-                "full Newton's iterations before a step fails (default 20)",
-                [&](const std::string& s) {
-                  const long long n = parse_integer(s);
-                  if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
-                  newton.max_iterations = static_cast<int>(n);
-                });
-  cli.add_value("--jacobian", stiffness_treatments().accepted("|"),
-                "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
-                "(Choi & Ko 2002; the default with cg)",
-                [&](const std::string& s) { jacobian = stiffness_treatments().parse(s); });
+  flags.add_to(cli);  // --newton, --linear-solver, --newton-tol, --newton-max-iter, --jacobian
   cli.add_switch("--report-runs",
                  "the report's (K, D) = (50,0), (200,0), (200,20) with full and one-iteration Newton, a stiff step's "
                  "residuals and the definite matrix at K = 50 (the chapter's figures; exit 0 even when a run fails)",
                  [&] { want_report_runs = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
+    const NewtonSettings& newton = flags.given();
     const auto particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
     // The settings of a run at (K, D): the Newton matrix the solver takes unless --jacobian chose one.
     const auto newton_for = [&](double K, double D) {
-      const SceneParams p = with_K_and_D(opt.scene, K, D);
-      NewtonSettings s = newton;
-      s.treatment = jacobian ? *jacobian : default_treatment(newton.solver, Scene(p).has_damping());
-      check_settings(s, Scene(p));
-      return s;
+      return flags.settings_for(Scene(with_K_and_D(opt.scene, K, D)));
     };
     if (!want_report_runs) {
       const NewtonSettings settings = newton_for(opt.scene.stiffness, opt.scene.damping);

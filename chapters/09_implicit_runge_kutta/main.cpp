@@ -12,6 +12,7 @@
 #include "integrators/simulate.hpp"
 #include "program/fragment.hpp"
 #include "program/limits.hpp"
+#include "program/method_flags.hpp"
 #include "program/method_tables.hpp"
 #include "program/output.hpp"
 #include "program/run_outputs.hpp"
@@ -29,15 +30,6 @@
 using namespace cloth;
 
 namespace {
-
-const char* treatment_name(StiffnessTreatment t) {
-  switch (t) {
-    case StiffnessTreatment::exact: return "exact";
-    case StiffnessTreatment::symmetric: return "symmetric";
-    case StiffnessTreatment::definite: return "definite";
-  }
-  return "?";
-}
 
 // What the command line chose: a registered implicit method or a tableau file, Newton's settings, step control.
 struct MethodChoice {
@@ -95,7 +87,7 @@ std::vector<std::pair<std::string, std::string>> method_lines(const MethodChoice
   }
   lines.emplace_back("newton", newton_variant_name(newton.one_iteration() ? NewtonVariant::one : newton.variant));
   lines.emplace_back("linear_solver", linear_solver_name(resolve(newton, stepper.field().scene()).solver));
-  lines.emplace_back("jacobian", treatment_name(newton.treatment));
+  lines.emplace_back("jacobian", stiffness_treatments().name(newton.treatment));
   lines.emplace_back("newton_tol", format_number(newton.tolerance, 10));
   lines.emplace_back("newton_max_iter", std::to_string(newton.max_iterations));
   lines.emplace_back("linear_solves", std::to_string(result.counters.linear_solves));
@@ -345,9 +337,7 @@ void report_runs(const Options& opt, const NewtonSettings& newton, bool quick, c
 
 int main(int argc, char** argv) {
   MethodChoice choice;
-  std::optional<StiffnessTreatment> jacobian;
-  std::optional<NewtonVariant> variant;
-  bool max_iterations_given = false;
+  NewtonFlags flags;
   bool want_report_runs = false, quick = false;
   CommandLine cli("ch09_implicit_runge_kutta",
                   "Chapter 9: a diagonally implicit Runge-Kutta method from its Butcher tableau, or BDF2, on the\n"
@@ -366,47 +356,7 @@ int main(int argc, char** argv) {
                   if (!(t > 0) || t >= 1) throw InputError("expected a number in (0, 1), got " + s);
                   choice.tol = t;
                 });
-  cli.add_value("--newton", "full|modified|one",
-                "full Newton, modified Newton (a factorization kept while it converges fast), or Baraff & Witkin's "
-                "one iteration (default full)",
-                [&](const std::string& s) {
-                  if (s == "full") variant = NewtonVariant::full;
-                  else if (s == "modified") variant = NewtonVariant::modified;
-                  else if (s == "one") variant = NewtonVariant::one;
-                  else throw InputError("unknown Newton variant '" + s + "': expected full, modified or one");
-                });
-  cli.add_value("--linear-solver", "ldlt|ldu|cg|lu",
-                "block LDL^T, block LDU, block-Jacobi-preconditioned CG, or Eigen's pivoting sparse LU (default: ldu "
-                "for the exact Jacobian of a damped cloth, ldlt otherwise)",
-                [&](const std::string& s) {
-                  if (s == "ldlt") choice.newton.solver = LinearSolverKind::ldlt;
-                  else if (s == "ldu") choice.newton.solver = LinearSolverKind::ldu;
-                  else if (s == "cg") choice.newton.solver = LinearSolverKind::cg;
-                  else if (s == "lu") choice.newton.solver = LinearSolverKind::lu;
-                  else throw InputError("unknown solver '" + s + "': expected ldlt, ldu, cg or lu");
-                });
-  cli.add_value("--jacobian", "exact|symmetric|definite",
-                "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
-                "(Choi & Ko 2002; the default with cg)",
-                [&](const std::string& s) {
-                  if (s == "exact") jacobian = StiffnessTreatment::exact;
-                  else if (s == "symmetric") jacobian = StiffnessTreatment::symmetric;
-                  else if (s == "definite") jacobian = StiffnessTreatment::definite;
-                  else throw InputError("unknown Jacobian '" + s + "': expected exact, symmetric or definite");
-                });
-  cli.add_value("--newton-tol", "TOL", "Newton's stopping tolerance on |dv| and |r| (default 1e-8)",
-                [&](const std::string& s) {
-                  const double t = parse_number(s);
-                  if (!(t > 0) || t >= 1) throw InputError("expected a number in (0, 1), got " + s);
-                  choice.newton.tolerance = t;
-                });
-  cli.add_value("--newton-max-iter", "N", "Newton iterations before a stage fails (default 20)",
-                [&](const std::string& s) {
-                  const long long n = parse_integer(s);
-                  if (n < 1 || n > 1000) throw InputError("expected a whole number from 1 to 1000, got " + s);
-                  choice.newton.max_iterations = static_cast<int>(n);
-                  max_iterations_given = true;
-                });
+  flags.add_to(cli);  // --newton, --linear-solver, --newton-tol, --newton-max-iter, --jacobian
   cli.add_switch("--report-runs",
                  "the chapter's studies: every method on the undamped cloth, orders on (K, D) = (200, 20) and work "
                  "against precision on (5000, 20) over T = 0.4 s (exit 0 even when a run fails)",
@@ -416,30 +366,15 @@ int main(int argc, char** argv) {
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     {
-      const NewtonSettings newton = choice.newton;
       const std::optional<double> tol = choice.tol;
       choice = choose(tableau_argument);
-      choice.newton = newton;
       choice.tol = tol;
     }
     if (choice.tol && (choice.multistep() || !choice.tableau.has_embedded()))
       throw InputError("--tol: step control needs an embedded pair, and " + choice.argument +
                        " has no embedded weights: use --tableau trbdf2, or leave --tol out for fixed steps");
-    if (variant) choice.newton.variant = *variant;
-    if (variant == NewtonVariant::one && max_iterations_given && choice.newton.max_iterations != 1)
-      throw InputError("--newton-max-iter: --newton one takes exactly one iteration; leave --newton-max-iter out");
-    // Without --jacobian, the most exact matrix the chosen solver can take (as in Chapter 4).
-    const bool damped = Scene(opt.scene).has_damping();
-    if (jacobian) choice.newton.treatment = *jacobian;
-    else if (choice.newton.solver == LinearSolverKind::cg) choice.newton.treatment = StiffnessTreatment::definite;
-    else if (choice.newton.solver == LinearSolverKind::ldlt && damped)
-      choice.newton.treatment = StiffnessTreatment::symmetric;
-    else choice.newton.treatment = StiffnessTreatment::exact;
-    try {
-      validate(choice.newton, Scene(opt.scene));
-    } catch (const InputError& e) {
-      throw InputError(std::string("--linear-solver / --jacobian: ") + e.what());
-    }
+    // Newton's settings from their flags, with the one default rule for the Newton matrix (program/method_flags).
+    choice.newton = flags.settings_for(Scene(opt.scene));
     // Newton's matrices and factors: the implicit methods' memory, beyond what parse checked for an explicit run.
     const long long particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
     require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles));

@@ -9,6 +9,7 @@
 #include "integrators/implicit_tableaus.hpp"
 #include "integrators/local_global.hpp"
 #include "integrators/symplectic_euler.hpp"
+#include "integrators/xpbd.hpp"
 
 #include <cmath>
 #include <sys/stat.h>
@@ -21,7 +22,8 @@ const NameTable<MethodFamily>& method_families() {
                                               {MethodFamily::embedded_runge_kutta, "embedded_runge_kutta"},
                                               {MethodFamily::partitioned, "partitioned"},
                                               {MethodFamily::implicit_runge_kutta, "implicit_runge_kutta"},
-                                              {MethodFamily::multistep, "multistep"}});
+                                              {MethodFamily::multistep, "multistep"},
+                                              {MethodFamily::position_based, "position_based"}});
   return table;
 }
 
@@ -100,6 +102,16 @@ Method diagonally_implicit(const char* name, const char* title, const char* desc
 
 std::unique_ptr<Stepper> make_local_global(const Method& /*m*/, ForceField& field, const MethodSettings& settings) {
   return std::make_unique<LocalGlobal>(field, settings.local_global_iterations);
+}
+
+// XPBD with the iterations and substeps its settings ask for (one substep unless told).
+std::unique_ptr<Stepper> make_xpbd(const Method& m, ForceField& field, const MethodSettings& settings) {
+  return std::make_unique<Xpbd>(field, m.name, settings.xpbd_iterations, settings.substeps.value_or(1));
+}
+
+// Small steps: one XPBD iteration per substep, by definition, and 20 substeps per step unless told.
+std::unique_ptr<Stepper> make_small_steps(const Method& m, ForceField& field, const MethodSettings& settings) {
+  return std::make_unique<Xpbd>(field, m.name, 1, settings.substeps.value_or(20));
 }
 
 // A row of the explicit Runge-Kutta family: the tableau carries the method's name and order.
@@ -279,6 +291,18 @@ const std::vector<Method>& methods() {
       // is a stage equation for StageNewton (Choi & Ko 2002 use it for cloth).
       {"bdf2", "BDF2", "the two-step backward differentiation formula", MethodFamily::multistep, 2, std::nullopt,
        nullptr, make_bdf2},
+      // XPBD (Chapter 10; Macklin, Müller & Chentanez 2016): implicit Euler's step posed with one compliant
+      // distance constraint per spring (compliance 1/K), solved by Gauss-Seidel projections around the inertial
+      // prediction. Converged, it is implicit Euler's step up to the term its update drops (integrators/xpbd.cpp);
+      // with few iterations the springs stretch more than K allows. First order, like implicit Euler.
+      {"xpbd", "XPBD", "implicit Euler's step by projections of compliant spring constraints "
+       "(\\ref ref_macklin2016 \"Macklin et al. 2016\")",
+       MethodFamily::position_based, 1, std::nullopt, nullptr, make_xpbd},
+      // Small steps (Chapter 10; Macklin et al. 2019): the same projections, one iteration per substep and many
+      // substeps, which buys accuracy by shrinking the step rather than by iterating.
+      {"small_steps", "small steps", "one XPBD iteration per substep, many substeps "
+       "(\\ref ref_macklin2019 \"Macklin et al. 2019\")",
+       MethodFamily::position_based, 1, std::nullopt, nullptr, make_small_steps},
   };
   return table;
 }

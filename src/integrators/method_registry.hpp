@@ -28,14 +28,19 @@ enum class MethodFamily {
   partitioned,           ///< different rules for x and for v, so no single tableau (symplectic Euler)
   implicit_runge_kutta,  ///< a tableau with entries on or above the diagonal: stages solved by Newton's method
   multistep,             ///< a step that uses earlier steps as well as the current state
+  position_based,        ///< springs as compliant constraints projected around an inertial prediction (XPBD)
 };
-/// The families by name: explicit_runge_kutta, embedded_runge_kutta, partitioned, implicit_runge_kutta, multistep.
+/// The families by name: explicit_runge_kutta, embedded_runge_kutta, partitioned, implicit_runge_kutta, multistep,
+/// position_based.
 const NameTable<MethodFamily>& method_families();
 
 /// The settings a method's factory may read. Explicit methods read none; implicit ones read Newton's.
 struct MethodSettings {
   NewtonSettings newton;
   int local_global_iterations = 10;  ///< local/global iterations per step (Chapter 10; Liu et al. 2013 use ~10)
+  int xpbd_iterations = 10;  ///< `xpbd`'s Gauss-Seidel sweeps per substep (`small_steps` takes one, by definition)
+  /// Substeps per step of the position-based rows; unset, each row's own: 1 for `xpbd`, 20 for `small_steps`.
+  std::optional<int> substeps = std::nullopt;
 };
 
 /// One row of the registry.

@@ -1,0 +1,72 @@
+// The method flags of the model page parsed in one place: Newton's (--newton, --linear-solver, --jacobian,
+// --newton-tol, --newton-max-iter) for every program that runs an implicit method, with the one default rule for
+// the Newton matrix, and the iterative methods' (--iterations, --substeps) for local/global and XPBD.
+#pragma once
+
+#include "integrators/method_registry.hpp"
+#include "program/command_line.hpp"
+#include "program/run_outputs.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cloth {
+
+/// Without --jacobian, the most exact Newton matrix the chosen solver can take: CG needs a symmetric positive
+/// definite matrix (definite), LDL^T a symmetric one (symmetric, when the damper's d/dx would break symmetry), LDU
+/// and LU take the exact one. An explicit incompatible choice is refused by NewtonFlags::settings_for.
+StiffnessTreatment default_treatment(LinearSolverKind solver, bool damped);
+
+/// Newton's five flags. Usage:
+///   NewtonFlags newton;
+///   newton.add_to(cli);                                          // before cli.parse
+///   const NewtonSettings s = newton.settings_for(Scene(params));  // after it: the default rule, validated
+class NewtonFlags {
+ public:
+  /// Adds --newton, --linear-solver, --newton-tol, --newton-max-iter and --jacobian to `cli`.
+  void add_to(CommandLine& cli);
+
+  /// The settings the flags chose, the Newton matrix's treatment by default_treatment() unless --jacobian chose
+  /// it. Throws InputError naming the flags when they contradict each other (`--newton one` with another
+  /// `--newton-max-iter`) or the solver cannot take the matrix.
+  [[nodiscard]] NewtonSettings settings_for(const Scene& scene) const;
+
+  /// The settings as given, before the default rule: the treatment is the one --jacobian chose, or exact.
+  [[nodiscard]] const NewtonSettings& given() const { return newton_; }
+  /// The treatment --jacobian chose, if it was given.
+  [[nodiscard]] const std::optional<StiffnessTreatment>& jacobian() const { return jacobian_; }
+  /// The first of the five flags given on the command line, or empty: a program refuses it for a method that
+  /// has no Newton iteration.
+  [[nodiscard]] const std::string& first_given() const { return first_given_; }
+
+ private:
+  void note(const char* flag);
+  NewtonSettings newton_;
+  std::optional<StiffnessTreatment> jacobian_;
+  bool max_iterations_given_ = false;
+  std::string first_given_;
+};
+
+/// run.txt's lines for Newton's settings (resolved: the solver the automatic choice picked): newton,
+/// linear_solver, jacobian, newton_tol, newton_max_iter.
+KeyValues newton_run_lines(const NewtonSettings& resolved);
+
+/// --iterations and --substeps, the settings of the registry's iterative rows: local/global's iterations per
+/// step, XPBD's iterations per substep, and the substeps of XPBD and small steps. A method that does not read a
+/// flag refuses it (settings_for), so a flag never silently does nothing.
+class IterationFlags {
+ public:
+  void add_to(CommandLine& cli);
+  /// `settings` with the flags given applied for `method`. Throws InputError naming the flag when `method` has no
+  /// such setting (small steps take one iteration per substep by definition).
+  void apply(const Method& method, MethodSettings& settings) const;
+  /// run.txt's lines for the iterations and substeps `stepper` takes (none for a method without them).
+  static KeyValues run_lines(const Stepper& stepper);
+
+ private:
+  std::optional<int> iterations_;
+  std::optional<int> substeps_;
+};
+
+}  // namespace cloth
