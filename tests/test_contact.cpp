@@ -3,6 +3,7 @@
 // an accepted step inside the plane; the signed distances are those of the geometry.
 #include "base/input_error.hpp"
 #include "contact/obstacles.hpp"
+#include "integrators/contact_implicit_euler.hpp"
 #include "integrators/contact_stepper.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
@@ -54,18 +55,28 @@ struct InclineRun {
   double deepest;                 // largest penetration thickness - phi after any step
 };
 
-// Runs the sheet for T with `method` wrapped in the contact correction, checking every accepted step.
+// The name the tests give Baraff and Witkin's implicit Euler with contact filtered inside CG.
+constexpr const char* filtered = "filtered implicit_euler";
+
+// `method` from the registry wrapped in the contact correction, or Baraff and Witkin's filtered step.
+std::unique_ptr<Stepper> contact_stepper(const std::string& method, ForceField& field, const ContactModel& model) {
+  if (method == filtered) return std::make_unique<ContactImplicitEuler>(field, model);
+  return std::make_unique<ContactStepper>(make_stepper(method, field), model);
+}
+
+// Runs the sheet for T with `method` and contact, checking every accepted step.
 InclineRun run_incline(const std::string& method, double theta, double mu_s, double mu_k, double h, double T) {
   const Scene scene(sheet_on_incline(theta));
   ForceField field(scene);
-  ContactStepper stepper(make_stepper(method, field), incline(theta, mu_s, mu_k));
+  const ContactModel model = incline(theta, mu_s, mu_k);
+  const std::unique_ptr<Stepper> stepper = contact_stepper(method, field, model);
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
   const Vector x_start = x;
   double deepest = -1;
   const auto steps = static_cast<int>(std::lround(T / h));
   for (int k = 0; k < steps; ++k) {
-    REQUIRE(stepper.step(h, x, v));
-    deepest = std::max(deepest, deepest_penetration(stepper.model(), x));
+    REQUIRE(stepper->step(h, x, v));
+    deepest = std::max(deepest, deepest_penetration(model, x));
   }
   double mean = 0, largest = 0;
   for (int s = 0; s < scene.free_count(); ++s) {
@@ -107,6 +118,16 @@ TEST_CASE("frictionless contact stops the normal velocity only: tangential motio
   CHECK(v1.tail<3>() == Eigen::Vector3d(0.5, 0, 0.4));   // already leaving: untouched
 }
 
+TEST_CASE("a scene placed on the incline rests one thickness above it; a placement that is not a rotation is refused") {
+  const Scene scene(sheet_on_incline(0.4));
+  const Vector x = scene.initial_positions();
+  for (int s = 0; s < scene.free_count(); ++s)
+    CHECK(incline_normal(0.4).dot(x.segment<3>(3 * s)) == doctest::Approx(thickness).epsilon(1e-12));
+  SceneParams p = sheet_on_incline(0.4);
+  p.orientation(0, 0) *= 2;
+  CHECK_THROWS_AS(Scene{p}, InputError);
+}
+
 TEST_CASE("contact models out of range are refused with a line saying what is accepted") {
   ContactModel model;
   model.friction = {0.2, 0.3};
@@ -119,12 +140,12 @@ TEST_CASE("contact models out of range are refused with a line saying what is ac
   CHECK_THROWS_AS(validate(model), InputError);
 }
 
-TEST_CASE("a sheet on an incline slides with g (sin theta - mu_k cos theta) past the cone (explicit, partitioned, implicit)") {
+TEST_CASE("a sheet on an incline slides with g (sin theta - mu_k cos theta) past the cone (each family)") {
   // theta = 30 degrees, mu_s = 0.3, mu_k = 0.2: a = 9.81 (0.5 - 0.2 cos 30) = 3.206 m/s^2; T = 0.5 s, so the
   // sheet slides 0.4 m, twice its own width.
   const double theta = std::numbers::pi / 6, mu_s = 0.3, mu_k = 0.2, T = 0.5;
   const double a = g * (std::sin(theta) - mu_k * std::cos(theta));
-  for (const char* method : {"symplectic_euler", "rk4", "implicit_euler"}) {
+  for (const char* method : {"symplectic_euler", "rk4", "implicit_euler", "xpbd", "small_steps", filtered}) {
     CAPTURE(method);
     const InclineRun run = run_incline(method, theta, mu_s, mu_k, 5e-4, T);
     CHECK(run.mean_downhill_velocity / T == doctest::Approx(a).epsilon(0.01));
@@ -136,16 +157,19 @@ TEST_CASE("the sheet sticks for tan theta <= mu_s and slides just past it: the e
   const double mu_s = 0.5, mu_k = 0.4, T = 0.25, h = 5e-4;
   // Just inside the cone it does not move; frictionless it would slide g sin(theta) T^2 / 2 = 0.14 m.
   const double inside = std::atan(0.999 * mu_s);
-  const InclineRun held = run_incline("symplectic_euler", inside, mu_s, mu_k, h, T);
-  CHECK(held.largest_displacement < 1e-9 * (0.5 * g * std::sin(inside) * T * T));
-  CHECK(std::abs(held.mean_downhill_velocity) < 1e-12);
-  CHECK(held.deepest <= 0.01 * thickness);
   // Just outside it slides with the kinetic coefficient: a = g (sin - mu_k cos) = 0.88 m/s^2.
   const double outside = std::atan(1.001 * mu_s);
   const double a = g * (std::sin(outside) - mu_k * std::cos(outside));
-  const InclineRun slid = run_incline("symplectic_euler", outside, mu_s, mu_k, h, T);
-  CHECK(slid.mean_downhill_velocity / T == doctest::Approx(a).epsilon(0.01));
-  CHECK(slid.deepest <= 0.01 * thickness);
+  for (const char* method : {"symplectic_euler", "small_steps", filtered}) {
+    CAPTURE(method);
+    const InclineRun held = run_incline(method, inside, mu_s, mu_k, h, T);
+    CHECK(held.largest_displacement < 1e-9 * (0.5 * g * std::sin(inside) * T * T));
+    CHECK(std::abs(held.mean_downhill_velocity) < 1e-12);
+    CHECK(held.deepest <= 0.01 * thickness);
+    const InclineRun slid = run_incline(method, outside, mu_s, mu_k, h, T);
+    CHECK(slid.mean_downhill_velocity / T == doctest::Approx(a).epsilon(0.01));
+    CHECK(slid.deepest <= 0.01 * thickness);
+  }
 }
 
 TEST_CASE("the contact wrapper runs in the driver: it counts the inner method's work and keeps its name") {
@@ -162,4 +186,32 @@ TEST_CASE("the contact wrapper runs in the driver: it counts the inner method's 
   CHECK(result.counters.steps == 100);
   CHECK(result.counters.rhs_evaluations == 400);
   CHECK(stepper.last_contacts() == scene.free_count());
+}
+
+TEST_CASE("filtered implicit Euler: contacts enter as the sheet lands and leave when it is thrown up") {
+  // A free 10 x 10 sheet 2 cm above the ground (its shell 1.5 cm clear), falling, then resting: no particle
+  // ever inside the shell, and once landed every particle constrained.
+  SceneParams p = sheet_on_incline(0.0);
+  p.origin = Eigen::Vector3d(0, 0, 0.02);
+  p.damping = 0.01;
+  const Scene scene(p);
+  ForceField field(scene);
+  ContactModel ground = incline(0.0, 0.5, 0.4);
+  ContactImplicitEuler stepper(field, ground);
+  Vector x = scene.initial_positions(), v = scene.initial_velocities();
+  const double h = 1e-3;
+  for (int k = 0; k < 200; ++k) {  // 0.2 s: it lands at t = sqrt(2 0.015 / g) = 0.055 s
+    REQUIRE(stepper.step(h, x, v));
+    CHECK(deepest_penetration(ground, x) <= 0.01 * thickness);
+  }
+  CHECK(stepper.constrained() == scene.free_count());
+  CHECK(v.cwiseAbs().maxCoeff() < 1e-9);  // at rest on the ground
+  // Thrown up at 1 m/s, it leaves at once (no constraint holds a particle moving away) and flies as implicit
+  // Euler flies a free particle: v_k = 1 - k h g, so after 100 steps z = thickness + 100 h - g h^2 100 101 / 2.
+  for (int s = 0; s < scene.free_count(); ++s) v[3 * s + 2] = 1.0;
+  for (int k = 0; k < 100; ++k) REQUIRE(stepper.step(h, x, v));
+  CHECK(stepper.constrained() == 0);
+  double mean_z = 0;
+  for (int s = 0; s < scene.free_count(); ++s) mean_z += x[3 * s + 2] / scene.free_count();
+  CHECK(mean_z == doctest::Approx(thickness + 100 * h - g * h * h * 5050).epsilon(1e-9));
 }

@@ -56,22 +56,35 @@ Eigen::Vector3d coulomb(const Eigen::Vector3d& t, double j_n, const Friction& fr
 
 }  // namespace
 
+namespace {
+
+// The displacement rule for one particle against one obstacle: when x1 lies within the thickness (d > 0), moves it
+// out along the normal n by d, passes its tangential displacement from x0 through the cone, sets n and returns true.
+bool correct_displacement(const ContactModel& model, const Obstacle& obstacle, const Eigen::Vector3d& x0,
+                          Eigen::Ref<Eigen::Vector3d> x1, Eigen::Vector3d& n) {
+  const SurfacePoint surface = surface_point(obstacle, x1);
+  const double d = model.thickness - surface.phi;  // penetration of the shell of the cloth's thickness
+  if (!(d > 0)) return false;
+  n = surface.normal;
+  // Out along n by d; the tangential part through the cone, with the normal correction d as the impulse.
+  const Eigen::Vector3d dx = x1 - x0 + d * n;
+  const double dx_n = dx.dot(n);
+  x1 = x0 + dx_n * n + coulomb(dx - dx_n * n, d, model.friction);
+  return true;
+}
+
+}  // namespace
+
 // [obstacle_contact]
 int resolve_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
                               Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
   int contacts = 0;
+  Eigen::Vector3d n;
   const Eigen::Index particles = x1.size() / 3;
   for (Eigen::Index s = 0; s < particles; ++s) {
     for (const Obstacle& obstacle : model.obstacles) {
-      const SurfacePoint surface = surface_point(obstacle, x1.segment<3>(3 * s));
-      const double d = model.thickness - surface.phi;  // penetration of the shell of the cloth's thickness
-      if (!(d > 0)) continue;
+      if (!correct_displacement(model, obstacle, x0.segment<3>(3 * s), x1.segment<3>(3 * s), n)) continue;
       ++contacts;
-      const Eigen::Vector3d& n = surface.normal;
-      // The displacement: out along n by d, its tangential part through the cone with the normal impulse d.
-      const Eigen::Vector3d dx = x1.segment<3>(3 * s) - x0.segment<3>(3 * s) + d * n;
-      const double dx_n = dx.dot(n);
-      x1.segment<3>(3 * s) = x0.segment<3>(3 * s) + dx_n * n + coulomb(dx - dx_n * n, d, model.friction);
       // The velocity: an inward normal part stopped, its tangential part through the cone with that impulse.
       const Eigen::Vector3d v = v1.segment<3>(3 * s);
       const double v_n = v.dot(n);
@@ -81,6 +94,16 @@ int resolve_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const 
   return contacts;
 }
 // [obstacle_contact]
+
+int project_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                              Eigen::Ref<Eigen::VectorXd> x1) {
+  int contacts = 0;
+  Eigen::Vector3d n;
+  for (Eigen::Index s = 0; s < x1.size() / 3; ++s)
+    for (const Obstacle& obstacle : model.obstacles)
+      contacts += correct_displacement(model, obstacle, x0.segment<3>(3 * s), x1.segment<3>(3 * s), n) ? 1 : 0;
+  return contacts;
+}
 
 double deepest_penetration(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x) {
   double deepest = -std::numeric_limits<double>::infinity();

@@ -63,6 +63,12 @@ void validate(const ContactModel& model);
 int resolve_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
                               Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1);
 
+/// The displacement rule of resolve_obstacle_contacts alone, for methods whose velocities follow from their
+/// positions (XPBD: v = (x1 - x0) / h): the contacts as inequality constraints phi(x) >= thickness, projected,
+/// with the cone applied to the displacement (Macklin et al. 2014's position-level friction).
+int project_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                              Eigen::Ref<Eigen::VectorXd> x1);
+
 /// The deepest penetration, max over particles and obstacles of thickness - phi (negative when nothing touches).
 [[nodiscard]] double deepest_penetration(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x);
 

@@ -60,8 +60,9 @@ void SpatialHash::pairs_within(const Eigen::Ref<const Eigen::VectorXd>& x, doubl
       for (long long dj = -1; dj <= 1; ++dj)
         for (long long dk = -1; dk <= 1; ++dk) {
           const int b = bucket(i + di, j + dj, k + dk);
-          const auto seen_end = seen.begin() + seen_count;
-          if (std::find(seen.begin(), seen_end, b) != seen_end) continue;
+          const int* const seen_begin = seen.data();
+          const int* const seen_end = seen_begin + seen_count;
+          if (std::find(seen_begin, seen_end, b) != seen_end) continue;
           seen[static_cast<std::size_t>(seen_count++)] = b;
           const auto begin = static_cast<std::size_t>(bucket_start_[static_cast<std::size_t>(b)]);
           const auto end = static_cast<std::size_t>(bucket_start_[static_cast<std::size_t>(b) + 1]);

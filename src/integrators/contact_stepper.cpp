@@ -1,6 +1,8 @@
 // The contact wrapper: the inner method's step, then the obstacle correction of its end state.
 #include "integrators/contact_stepper.hpp"
 
+#include "integrators/xpbd.hpp"
+
 #include <utility>
 
 namespace cloth {
@@ -24,6 +26,9 @@ void add_work(StepCounters& total, const StepCounters& before, const StepCounter
 ContactStepper::ContactStepper(std::unique_ptr<Stepper> inner, ContactModel model)
     : Stepper(inner->field()), inner_(std::move(inner)), model_(std::move(model)), x0_(field_.dof_count()) {
   validate(model_);
+  // XPBD takes contact inside its substeps, as inequality constraints; the correction after its step then finds
+  // nothing left to do but guard the end state.
+  if (auto* xpbd = dynamic_cast<Xpbd*>(inner_.get())) xpbd->set_contact(&model_);
 }
 
 // [contact_step]

@@ -12,7 +12,10 @@ namespace cloth {
 /// Why a wrapper rather than a hook in the driver: a Stepper is what every family of the registry is (explicit
 /// and embedded Runge-Kutta, symplectic Euler, the Newton-based implicit methods) and what both drivers and every
 /// test take, so wrapping one gives each of them contact with no change to the drivers; and the correction stays
-/// part of the step, so a step that is accepted is one whose end state is already out of the obstacles.
+/// part of the step, so a step that is accepted is one whose end state is already out of the obstacles. XPBD is
+/// the exception that takes contact inside its step: wrapped, it is handed the model and projects the contacts as
+/// inequality constraints in every substep (Xpbd::set_contact). Implicit Euler wrapped is corrected after its
+/// step like the explicit methods; ContactImplicitEuler enforces contact inside its linear solve instead.
 class ContactStepper final : public Stepper {
  public:
   /// Wraps `inner` (which must step on `inner->field()`); the model must pass validate(ContactModel).
