@@ -64,6 +64,18 @@ SceneKind scene_of(int argc, char** argv) {
   return SceneKind::incline;
 }
 
+double above_zero(const std::string& text) {
+  const double x = parse_number(text);
+  if (!(x > 0)) throw InputError(text + ": expected a number > 0");
+  return x;
+}
+
+double at_least_zero(const std::string& text) {
+  const double x = parse_number(text);
+  if (!(x >= 0)) throw InputError(text + ": expected a number >= 0");
+  return x;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -92,17 +104,20 @@ int main(int argc, char** argv) {
                     throw InputError(s + ": expected an angle in [0, 80] degrees");
                 });
   cli.add_value("--mu-s", "X", "static friction coefficient, >= 0 (default 0.3)",
-                [&](const std::string& s) { mu_s = parse_number(s); });
+                [&](const std::string& s) { mu_s = at_least_zero(s); });
   cli.add_value("--mu-k", "Y", "kinetic friction coefficient, in [0, mu_s] (default 0.2)",
-                [&](const std::string& s) { mu_k = parse_number(s); });
+                [&](const std::string& s) { mu_k = at_least_zero(s); });
   cli.add_value("--thickness", "h", "the cloth's thickness [m], > 0 (default 0.005)",
-                [&](const std::string& s) { thickness = parse_number(s); });
+                [&](const std::string& s) { thickness = above_zero(s); });
   cli.add_value("--sphere-radius", "r", "sphere scene: the sphere's radius [m], > 0 (default 0.3)",
-                [&](const std::string& s) { sphere_radius = parse_number(s); });
+                [&](const std::string& s) { sphere_radius = above_zero(s); });
   newton.add_to(cli);
   iterations.add_to(cli);
   return run_program(cli.program(), [&] {
     Options opt = cli.parse(argc, argv);
+    if (mu_k > mu_s)
+      throw InputError("--mu-k " + format_number(mu_k) + ": expected at most --mu-s = " + format_number(mu_s) +
+                       " (sliding friction never exceeds sticking friction)");
     ContactModel model;
     model.thickness = thickness;
     model.friction = {mu_s, mu_k};
