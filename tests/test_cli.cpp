@@ -441,6 +441,49 @@ TEST_CASE("ch10_cloth: every registered method runs by name and writes the stand
 }
 #endif
 
+#ifdef CLOTH_HAVE_CH11_CONTACT
+TEST_CASE("ch11_contact: bad input gives status 2, one line naming the flag, nothing written") {
+  // The scenes' own --dt is 0.5 ms, under which --t-end 0.001 is a run: that case is given --dt 0.01 here.
+  std::vector<BadInput> cases = shared_flag_cases();
+  for (BadInput& c : cases)
+    if (c.args == std::vector<std::string>{"--t-end", "0.001"}) c.args = {"--t-end", "0.001", "--dt", "0.01"};
+  expect_refused("ch11_contact", cases);
+  expect_refused("ch11_contact",
+                 {
+                     {{"--scene", "fold"}, {"--scene", "'fold'", "incline", "sphere"}},
+                     {{"--mu-s", "0.1"}, {"--mu-k", "at most --mu-s = 0.1"}},
+                     {{"--mu-s", "-1"}, {"--mu-s", ">= 0"}},
+                     {{"--thickness", "0"}, {"--thickness", "> 0"}},
+                     {{"--incline-angle", "90"}, {"--incline-angle", "[0, 80]"}},
+                     {{"--method", "implicit_euler", "--newton", "one"}, {"--newton", "filtered conjugate gradients"}},
+                 });
+}
+
+TEST_CASE("ch11_contact: run.txt records the geometry of each scene, and the frames stay out of the obstacles") {
+  const ProgramFolder folder;
+  const ProgramRun incline = folder.run("ch11_contact", {"--t-end", "0.05", "--incline-angle", "20", "--out", "incline"});
+  CAPTURE(incline.err);
+  REQUIRE(incline.status == 0);
+  const std::string txt = read_text(folder.cwd() / "incline" / "run.txt");
+  for (const char* key : {"incline_angle = 20\n", "mu_s = 0.3\n", "mu_k = 0.2\n", "thickness = 0.005\n",
+                          "contact = after_step\n", "grid = 10x10\n", "status = ok"}) {
+    CAPTURE(key);
+    CHECK(txt.find(key) != std::string::npos);
+  }
+  for (const char* method : {"implicit_euler", "small_steps"}) {
+    const ProgramRun sphere = folder.run("ch11_contact", {"--scene", "sphere", "--method", method, "--grid", "6x6",
+                                                          "--spacing", "0.1", "--t-end", "0.3", "--out", method});
+    CAPTURE(sphere.err);
+    REQUIRE(sphere.status == 0);
+    const std::string s = read_text(folder.cwd() / method / "run.txt");
+    CHECK(s.find("ground_z = 0\nsphere = 0.25 0.25 0.3 0.3\n") != std::string::npos);
+    CHECK(s.find(std::string("contact = ") +
+                 (std::string(method) == "implicit_euler" ? "filtered_cg" : "inequality_constraints")) !=
+          std::string::npos);
+  }
+}
+#endif
+
 #ifdef CLOTH_HAVE_CH10_XPBD
 TEST_CASE("ch10_xpbd: an experiment program on its own scenes takes --out only") {
   expect_refused("ch10_xpbd", {

@@ -204,6 +204,10 @@ std::vector<ProgramOutputs> every_output() {
 #ifdef CLOTH_HAVE_CH10_XPBD
       {"ch10_xpbd", {}, {"xpbd_gap.md", "xpbd_strain.md"}},
 #endif
+#ifdef CLOTH_HAVE_CH11_CONTACT
+      {"ch11_contact", {}, run_files},
+      {"ch11_contact", {"--scene", "sphere", "--method", "implicit_euler", "--grid", "6x6"}, run_files},
+#endif
 #ifdef CLOTH_HAVE_CH12_BENDING
       {"ch12_bending", {}, {"final.dat", "run.txt"}},
       {"ch12_bending",
@@ -291,6 +295,11 @@ constexpr std::size_t folder_cases_ch10_cloth = 2 * (4 + 1);
 #else
 constexpr std::size_t folder_cases_ch10_cloth = 0;
 #endif
+#ifdef CLOTH_HAVE_CH11_CONTACT
+constexpr std::size_t folder_cases_ch11_contact = 2 * (4 + 1);
+#else
+constexpr std::size_t folder_cases_ch11_contact = 0;
+#endif
 #ifdef CLOTH_HAVE_CH10_XPBD
 constexpr std::size_t folder_cases_ch10_xpbd = 2 + 1;
 #else
@@ -369,11 +378,12 @@ std::vector<Refused> cases_to_run(const std::vector<Refused>& cases) {
 #endif
 }
 
-TEST_CASE("a folder in the way of any output of ch01-ch04, ch08, ch10 and ch12, in any mode, is bad input: status 2, "
-          "nothing written") {
+TEST_CASE("a folder in the way of any output of ch01-ch04, ch08, ch10, ch11 and ch12, in any mode, is bad input: "
+          "status 2, nothing written") {
   const std::vector<Refused> cases = in_the_way_cases(every_output());
   CHECK(cases.size() == folder_cases_ch01_ch04 + folder_cases_ch08 + folder_cases_ch10 + folder_cases_ch10_peers +
-                       folder_cases_ch10_cloth + folder_cases_ch10_xpbd + folder_cases_ch12);
+                       folder_cases_ch10_cloth + folder_cases_ch10_xpbd + folder_cases_ch11_contact +
+                       folder_cases_ch12);
   expect_refused(cases_to_run(cases));
 }
 

@@ -245,6 +245,9 @@ TEST_CASE("a full disk during a run: status 4, one line naming the file, every f
 #ifdef CLOTH_HAVE_CH10_CLOTH
       {"ch10_cloth", {"--method", "small_steps", "--t-end", "0.2"}},
 #endif
+#ifdef CLOTH_HAVE_CH11_CONTACT
+      {"ch11_contact", {"--t-end", "0.2"}},
+#endif
   };
   for (const DiskCase& c : cases) {
     const SmallDisk disk;
@@ -443,6 +446,10 @@ TEST_CASE("SIGINT and SIGTERM during a run: the run stops at the next step, keep
 #ifdef CLOTH_HAVE_CH10_CLOTH
       {"ch10_cloth", {"--method", "xpbd", "--t-end", "1000", "--dt", "1e-3"}, SIGTERM, "xpbd"},
       {"ch10_cloth", {"--method", "local_global", "--t-end", "1000", "--dt", "1e-3"}, SIGINT, "local_global"},
+#endif
+#ifdef CLOTH_HAVE_CH11_CONTACT
+      {"ch11_contact", {"--scene", "sphere", "--method", "implicit_euler", "--t-end", "1000"}, SIGTERM,
+       "implicit_euler"},
 #endif
   };
   for (const SignalCase& c : cases) {

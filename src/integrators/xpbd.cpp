@@ -103,6 +103,11 @@ void Xpbd::substep(double s) {
       }
     }
   }
+  if (contact_ != nullptr) {  // contacts last, so that no spring projection pushes a particle back in
+    const auto free_coordinates = static_cast<Eigen::Index>(3 * n);
+    project_obstacle_contacts(*contact_, Eigen::Map<const Eigen::VectorXd>(previous_.data(), free_coordinates),
+                              Eigen::Map<Eigen::VectorXd>(X_.data(), free_coordinates));
+  }
   // The velocity the positions imply, as implicit Euler's v = (x - x^n) / s.
   V_.leftCols(n) = (X_.leftCols(n) - previous_.leftCols(n)) / s;
   // [xpbd_substep]

@@ -3,6 +3,7 @@
 // constraint, projected one at a time (Gauss-Seidel) around an inertial prediction. What real-time cloth ships.
 #pragma once
 
+#include "contact/obstacles.hpp"
 #include "integrators/stepper.hpp"
 
 #include <Eigen/Core>
@@ -51,6 +52,11 @@ class Xpbd final : public Stepper {
   [[nodiscard]] int iterations() const { return iterations_; }
   [[nodiscard]] int substeps() const { return substeps_; }
 
+  /// Contact as inequality constraints phi(x) >= thickness (Chapter 11), projected with their friction at the
+  /// end of every substep's sweeps, so that the velocity the substep derives from its positions has stopped at
+  /// the obstacle; null (the default) for none. The model must outlive the stepper.
+  void set_contact(const ContactModel* contact) { contact_ = contact; }
+
  private:
   void substep(double s);
 
@@ -65,6 +71,7 @@ class Xpbd final : public Stepper {
   Slots previous_;  // x^n, the positions at the start of the substep
   Slots V_;         // velocities of the free slots (the pinned tail stays 0)
   std::vector<double> lambda_;  // each spring's multiplier, summed over the substep's iterations
+  const ContactModel* contact_ = nullptr;
 };
 
 }  // namespace cloth

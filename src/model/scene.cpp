@@ -4,6 +4,7 @@
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 
+#include <Eigen/LU>  // determinant() of the placement
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -66,6 +67,10 @@ void validate(const SceneParams& p) {
     throw InputError("gravity = " + format_number(p.gravity) + ": expected a finite number >= 0");
   if (!(p.families.on[0] || p.families.on[1] || p.families.on[2]))
     throw InputError("springs: at least one family of structural, shear, flexion is needed");
+  const Eigen::Matrix3d& R = p.orientation;
+  if (!(R.allFinite() && p.origin.allFinite() &&
+        (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <= 1e-12 && R.determinant() > 0))
+    throw InputError("placement: expected a finite origin and a rotation (R^T R = I, det R = 1) as orientation");
   int free = 0;
   for (int i = 0; i < g.M; ++i)
     for (int j = 0; j < g.N; ++j) free += pinned(g, p.pins, i, j) ? 0 : 1;
@@ -98,7 +103,8 @@ Scene::Scene(const SceneParams& params) : params_(params) {
   rest_positions_.resize(3 * n);
   for (int s = 0; s < n; ++s) {
     const int particle = particle_of_slot_[static_cast<std::size_t>(s)];
-    rest_positions_.segment<3>(3 * s) = g.rest_position(particle / g.N, particle % g.N);
+    rest_positions_.segment<3>(3 * s) =
+        params_.origin + params_.orientation * g.rest_position(particle / g.N, particle % g.N);
   }
 }
 

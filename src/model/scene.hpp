@@ -48,6 +48,10 @@ struct SceneParams {
   double initial_swing = 0.0;
   double mass = 1.0;                  ///< m, the same for every particle [kg]
   double gravity = 9.81;              ///< g [m/s^2]; 0 removes the gravity term
+  /// Where the grid rests (Chapter 11 lays a sheet on an inclined plane): particle (i, j) rests at
+  /// origin + orientation (i d, j d, 0). Identity and zero, the report's placement; orientation must be a rotation.
+  Eigen::Matrix3d orientation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
 };
 
 /// The largest grid a scene accepts, checked before anything is allocated.

@@ -13,7 +13,7 @@
 
 namespace cloth {
 
-/// Without --jacobian, the most exact Newton matrix the chosen solver can take: CG needs a symmetric positive
+/// Without `--jacobian`, the most exact Newton matrix the chosen solver can take: CG needs a symmetric positive
 /// definite matrix (definite), LDL^T a symmetric one (symmetric, when the damper's d/dx would break symmetry:
 /// `nonsymmetric` is true for a damped cloth in the residual form), LDU
 /// and LU take the exact one. An explicit incompatible choice is refused by NewtonFlags::settings_for.
@@ -25,17 +25,18 @@ StiffnessTreatment default_treatment(LinearSolverKind solver, bool nonsymmetric)
 ///   const NewtonSettings s = newton.settings_for(Scene(params));  // after it: the default rule, validated
 class NewtonFlags {
  public:
-  /// Adds --newton, --linear-solver, --newton-tol, --newton-max-iter, --line-search and --jacobian to `cli`.
+  /// Adds `--newton`, `--linear-solver`, `--newton-tol`, `--newton-max-iter`, `--line-search` and `--jacobian`
+  /// to `cli`.
   void add_to(CommandLine& cli);
 
-  /// The settings the flags chose, the Newton matrix's treatment by default_treatment() unless --jacobian chose
+  /// The settings the flags chose, the Newton matrix's treatment by default_treatment() unless `--jacobian` chose
   /// it. Throws InputError naming the flags when they contradict each other (`--newton one` with another
   /// `--newton-max-iter`) or the solver cannot take the matrix.
   [[nodiscard]] NewtonSettings settings_for(const Scene& scene) const;
 
-  /// The settings as given, before the default rule: the treatment is the one --jacobian chose, or exact.
+  /// The settings as given, before the default rule: the treatment is the one `--jacobian` chose, or exact.
   [[nodiscard]] const NewtonSettings& given() const { return newton_; }
-  /// The treatment --jacobian chose, if it was given.
+  /// The treatment `--jacobian` chose, if it was given.
   [[nodiscard]] const std::optional<StiffnessTreatment>& jacobian() const { return jacobian_; }
   /// The first of the six flags given on the command line, or empty: a program refuses it for a method that
   /// has no Newton iteration.
@@ -53,7 +54,7 @@ class NewtonFlags {
 /// linear_solver, jacobian, newton_tol, newton_max_iter, line_search.
 KeyValues newton_run_lines(const NewtonSettings& resolved);
 
-/// --iterations and --substeps, the settings of the registry's iterative rows: local/global's iterations per
+/// `--iterations` and `--substeps`, the settings of the registry's iterative rows: local/global's iterations per
 /// step, XPBD's iterations per substep, and the substeps of XPBD and small steps. A method that does not read a
 /// flag refuses it (settings_for), so a flag never silently does nothing.
 class IterationFlags {

@@ -50,7 +50,7 @@ int report(const RunResult& result, const Stepper& stepper, const std::string& p
 /// `method`: for a program whose run is not a Stepper's (a library's integrator).
 int report_stop(const RunResult& result, const std::string& method, const std::string& program);
 
-/// write_outputs, then report; also says on stdout when frames.dat holds fewer frames than --frames asked for
+/// write_outputs, then report; also says on stdout when frames.dat holds fewer frames than `--frames` asked for
 /// (at most one per step). The one call a single-run program makes after simulate.
 int finish_run(const RunResult& result, const Stepper& stepper, const RunSettings& settings,
                const std::string& program, const KeyValues& extra = {});

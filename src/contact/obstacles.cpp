@@ -1,0 +1,116 @@
+// Signed distances of the obstacles and the Coulomb correction of a step's end state.
+#include "contact/obstacles.hpp"
+
+#include "base/format_number.hpp"
+#include "base/input_error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace cloth {
+
+SurfacePoint surface_point(const Obstacle& obstacle, const Eigen::Vector3d& x) {
+  if (const auto* plane = std::get_if<HalfSpace>(&obstacle))
+    return {plane->normal.dot(x - plane->point), plane->normal};
+  const auto& sphere = std::get<Sphere>(obstacle);
+  const Eigen::Vector3d r = x - sphere.center;
+  const double distance = r.norm();
+  // At the centre every direction is as near to the surface as any other: take e_z.
+  const Eigen::Vector3d n = distance > 0 ? Eigen::Vector3d(r / distance) : Eigen::Vector3d::UnitZ();
+  return {distance - sphere.radius, n};
+}
+
+void validate(const ContactModel& model) {
+  if (!(std::isfinite(model.thickness) && model.thickness > 0))
+    throw InputError("thickness = " + format_number(model.thickness) + ": expected a finite number > 0");
+  const Friction& f = model.friction;
+  if (!(std::isfinite(f.mu_s) && f.mu_s >= 0))
+    throw InputError("mu_s = " + format_number(f.mu_s) + ": expected a finite number >= 0");
+  if (!(std::isfinite(f.mu_k) && f.mu_k >= 0 && f.mu_k <= f.mu_s))
+    throw InputError("mu_k = " + format_number(f.mu_k) + ": expected a finite number in [0, mu_s = " +
+                     format_number(f.mu_s) + "]");
+  for (const Obstacle& obstacle : model.obstacles) {
+    if (const auto* plane = std::get_if<HalfSpace>(&obstacle)) {
+      if (!(plane->point.allFinite() && plane->normal.allFinite() && std::abs(plane->normal.norm() - 1) < 1e-12))
+        throw InputError("plane: expected a finite point and a unit normal");
+    } else if (const auto& sphere = std::get<Sphere>(obstacle);
+               !(sphere.center.allFinite() && std::isfinite(sphere.radius) && sphere.radius > 0)) {
+      throw InputError("sphere radius = " + format_number(sphere.radius) +
+                       ": expected a finite centre and a finite radius > 0");
+    }
+  }
+}
+
+namespace {
+
+// The cone applied to one impulse: a tangential vector t (a displacement or a velocity) that an impulse of normal
+// size j_n acts on. Coulomb allows a tangential impulse up to mu_s j_n to hold t at zero; beyond it the contact
+// slides and the tangential impulse is mu_k j_n, against t.
+Eigen::Vector3d coulomb(const Eigen::Vector3d& t, double j_n, const Friction& friction) {
+  const double t_norm = t.norm();
+  if (t_norm <= friction.mu_s * j_n) return Eigen::Vector3d::Zero();  // inside the static cone: sticks
+  return t * (1.0 - friction.mu_k * j_n / t_norm);                     // on the kinetic cone: slides
+}
+
+}  // namespace
+
+namespace {
+
+// The displacement rule for one particle against one obstacle: when x1 lies within the thickness (d > 0), moves it
+// out along the normal n by d, passes its tangential displacement from x0 through the cone, sets n and returns true.
+bool correct_displacement(const ContactModel& model, const Obstacle& obstacle, const Eigen::Vector3d& x0,
+                          Eigen::Ref<Eigen::Vector3d> x1, Eigen::Vector3d& n) {
+  const SurfacePoint surface = surface_point(obstacle, x1);
+  const double d = model.thickness - surface.phi;  // penetration of the shell of the cloth's thickness
+  if (!(d > 0)) return false;
+  n = surface.normal;
+  // Out along n by d; the tangential part through the cone, with the normal correction d as the impulse.
+  const Eigen::Vector3d dx = x1 - x0 + d * n;
+  const double dx_n = dx.dot(n);
+  x1 = x0 + dx_n * n + coulomb(dx - dx_n * n, d, model.friction);
+  return true;
+}
+
+}  // namespace
+
+// [obstacle_contact]
+int resolve_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                              Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
+  int contacts = 0;
+  Eigen::Vector3d n;
+  const Eigen::Index particles = x1.size() / 3;
+  for (Eigen::Index s = 0; s < particles; ++s) {
+    for (const Obstacle& obstacle : model.obstacles) {
+      if (!correct_displacement(model, obstacle, x0.segment<3>(3 * s), x1.segment<3>(3 * s), n)) continue;
+      ++contacts;
+      // The velocity: an inward normal part stopped, its tangential part through the cone with that impulse.
+      const Eigen::Vector3d v = v1.segment<3>(3 * s);
+      const double v_n = v.dot(n);
+      if (v_n < 0) v1.segment<3>(3 * s) = coulomb(v - v_n * n, -v_n, model.friction);
+    }
+  }
+  return contacts;
+}
+// [obstacle_contact]
+
+int project_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                              Eigen::Ref<Eigen::VectorXd> x1) {
+  int contacts = 0;
+  Eigen::Vector3d n;
+  for (Eigen::Index s = 0; s < x1.size() / 3; ++s)
+    for (const Obstacle& obstacle : model.obstacles)
+      contacts += correct_displacement(model, obstacle, x0.segment<3>(3 * s), x1.segment<3>(3 * s), n) ? 1 : 0;
+  return contacts;
+}
+
+double deepest_penetration(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x) {
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index s = 0; s < x.size() / 3; ++s)
+    for (const Obstacle& obstacle : model.obstacles)
+      deepest = std::max(deepest, model.thickness - surface_point(obstacle, x.segment<3>(3 * s)).phi);
+  return deepest;
+}
+
+}  // namespace cloth

@@ -1,0 +1,112 @@
+// The spatial hash of Teschner et al. 2003, stored as a counting sort, and the momentum-conserving pair response.
+#include "contact/spatial_hash.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace cloth {
+
+SpatialHash::SpatialHash(double cell, int buckets)
+    : cell_(cell), buckets_(buckets), bucket_start_(static_cast<std::size_t>(buckets) + 1) {}
+
+long long SpatialHash::cell_index(double coordinate) const {
+  return static_cast<long long>(std::floor(coordinate / cell_));
+}
+
+int SpatialHash::bucket(long long i, long long j, long long k) const {
+  // Unsigned arithmetic: the products wrap instead of overflowing, and negative cells hash like any other.
+  const auto h = (static_cast<unsigned long long>(i) * 73856093ULL) ^
+                 (static_cast<unsigned long long>(j) * 19349663ULL) ^
+                 (static_cast<unsigned long long>(k) * 83492791ULL);
+  return static_cast<int>(h % static_cast<unsigned long long>(buckets_));
+}
+
+// [hash_build]
+void SpatialHash::build(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  const auto n = static_cast<int>(x.size() / 3);
+  sorted_.resize(static_cast<std::size_t>(n));
+  std::fill(bucket_start_.begin(), bucket_start_.end(), 0);
+  const auto bucket_of = [&](int p) {
+    return bucket(cell_index(x[3 * p]), cell_index(x[3 * p + 1]), cell_index(x[3 * p + 2]));
+  };
+  // Count each bucket's particles, turn the counts into ends, then place each particle by decrementing its end:
+  // afterwards bucket_start_[b] is where bucket b starts.
+  for (int p = 0; p < n; ++p) ++bucket_start_[static_cast<std::size_t>(bucket_of(p)) + 1];
+  for (std::size_t b = 1; b < bucket_start_.size(); ++b) bucket_start_[b] += bucket_start_[b - 1];
+  for (int p = n - 1; p >= 0; --p) {
+    const auto b = static_cast<std::size_t>(bucket_of(p));
+    sorted_[static_cast<std::size_t>(--bucket_start_[b + 1])] = p;
+  }
+  // Each end was decremented once per particle of its bucket, so bucket_start_[b + 1] now holds bucket b's start:
+  // shift the array down by one and close it with the total.
+  std::rotate(bucket_start_.begin(), bucket_start_.begin() + 1, bucket_start_.end());
+  bucket_start_.back() = n;
+}
+// [hash_build]
+
+// [hash_query]
+void SpatialHash::pairs_within(const Eigen::Ref<const Eigen::VectorXd>& x, double r,
+                               std::vector<std::pair<int, int>>& pairs) const {
+  pairs.clear();
+  const double r2 = r * r;
+  const auto n = static_cast<int>(x.size() / 3);
+  std::array<int, 27> seen{};  // the buckets this query has read: two cells may hash to one bucket
+  for (int a = 0; a < n; ++a) {
+    const Eigen::Vector3d xa = x.segment<3>(3 * a);
+    const long long i = cell_index(xa[0]), j = cell_index(xa[1]), k = cell_index(xa[2]);
+    int seen_count = 0;
+    for (long long di = -1; di <= 1; ++di)
+      for (long long dj = -1; dj <= 1; ++dj)
+        for (long long dk = -1; dk <= 1; ++dk) {
+          const int b = bucket(i + di, j + dj, k + dk);
+          const int* const seen_begin = seen.data();
+          const int* const seen_end = seen_begin + seen_count;
+          if (std::find(seen_begin, seen_end, b) != seen_end) continue;
+          seen[static_cast<std::size_t>(seen_count++)] = b;
+          const auto begin = static_cast<std::size_t>(bucket_start_[static_cast<std::size_t>(b)]);
+          const auto end = static_cast<std::size_t>(bucket_start_[static_cast<std::size_t>(b) + 1]);
+          for (std::size_t e = begin; e < end; ++e) {
+            const int c = sorted_[e];
+            if (c > a && (x.segment<3>(3 * c) - xa).squaredNorm() < r2) pairs.emplace_back(a, c);
+          }
+        }
+  }
+}
+// [hash_query]
+
+std::vector<std::pair<int, int>> pairs_within_brute_force(const Eigen::Ref<const Eigen::VectorXd>& x, double r) {
+  std::vector<std::pair<int, int>> pairs;
+  const auto n = static_cast<int>(x.size() / 3);
+  for (int a = 0; a < n; ++a)
+    for (int c = a + 1; c < n; ++c)
+      if ((x.segment<3>(3 * c) - x.segment<3>(3 * a)).squaredNorm() < r * r) pairs.emplace_back(a, c);
+  return pairs;
+}
+
+// [self_contact]
+int resolve_self_contacts(const std::vector<std::pair<int, int>>& pairs, double thickness,
+                          Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<Eigen::VectorXd> v) {
+  int corrected = 0;
+  for (const auto& [a, b] : pairs) {
+    const Eigen::Vector3d ab = x.segment<3>(3 * b) - x.segment<3>(3 * a);
+    const double distance = ab.norm();
+    if (!(distance < thickness) || distance == 0) continue;  // coincident particles have no direction to part in
+    ++corrected;
+    const Eigen::Vector3d n = ab / distance;
+    // Equal masses: equal and opposite moves keep the centre of mass where it is.
+    const Eigen::Vector3d half_gap = 0.5 * (thickness - distance) * n;
+    x.segment<3>(3 * a) -= half_gap;
+    x.segment<3>(3 * b) += half_gap;
+    // Equal and opposite impulses remove the approaching normal relative velocity and keep the momentum.
+    const double approach = (v.segment<3>(3 * b) - v.segment<3>(3 * a)).dot(n);
+    if (approach < 0) {
+      v.segment<3>(3 * a) += 0.5 * approach * n;
+      v.segment<3>(3 * b) -= 0.5 * approach * n;
+    }
+  }
+  return corrected;
+}
+// [self_contact]
+
+}  // namespace cloth

@@ -1,0 +1,56 @@
+// Self-collision's two parts against independent truth: the spatial hash finds exactly the close pairs that
+// comparing every pair finds, and the pair response conserves linear momentum.
+#include "contact/spatial_hash.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <random>
+
+using namespace cloth;
+
+TEST_CASE("the spatial hash finds exactly the pairs a brute-force search finds, on random clouds") {
+  std::mt19937 rng(11);
+  struct Cloud {
+    int particles;
+    double box;     // the cloud fills [-box/2, box/2]^3: negative cells are hashed too
+    double r;
+    int buckets;    // few buckets force distinct cells into one bucket
+  };
+  const Cloud clouds[] = {{500, 1.0, 0.08, 1000}, {2000, 0.5, 0.02, 4000}, {300, 1.0, 0.2, 7}, {1000, 100.0, 3.0, 50}};
+  for (const Cloud& cloud : clouds) {
+    CAPTURE(cloud.particles);
+    CAPTURE(cloud.buckets);
+    std::uniform_real_distribution<double> coordinate(-cloud.box / 2, cloud.box / 2);
+    Eigen::VectorXd x(3 * cloud.particles);
+    for (Eigen::Index k = 0; k < x.size(); ++k) x[k] = coordinate(rng);
+    SpatialHash hash(cloud.r, cloud.buckets);
+    hash.build(x);
+    std::vector<std::pair<int, int>> found;
+    hash.pairs_within(x, cloud.r, found);
+    std::vector<std::pair<int, int>> truth = pairs_within_brute_force(x, cloud.r);
+    std::sort(found.begin(), found.end());
+    std::sort(truth.begin(), truth.end());
+    CHECK(truth.size() > 20);  // the clouds are dense enough for the comparison to mean something
+    CHECK(found == truth);     // the same pairs, each once
+  }
+}
+
+TEST_CASE("the self-contact response conserves linear momentum and parts a pair to the thickness") {
+  const double thickness = 0.01;
+  Eigen::VectorXd x(6), v(6);
+  x << 0.1, 0.2, 0.3, 0.1 + 0.004, 0.2 + 0.002, 0.3 - 0.001;  // 4.6 mm apart, inside a 1 cm shell
+  v << 1.5, -0.5, 2.0, -3.0, 0.25, 1.0;                          // approaching
+  const Eigen::Vector3d momentum = v.head<3>() + v.tail<3>();
+  const Eigen::Vector3d centre = x.head<3>() + x.tail<3>();
+  const Eigen::Vector3d n = (x.tail<3>() - x.head<3>()).normalized();
+  const Eigen::Vector3d tangential = (v.tail<3>() - v.head<3>()) - (v.tail<3>() - v.head<3>()).dot(n) * n;
+  REQUIRE((v.tail<3>() - v.head<3>()).dot(n) < -1);
+  CHECK(resolve_self_contacts({{0, 1}}, thickness, x, v) == 1);
+  CHECK((v.head<3>() + v.tail<3>() - momentum).norm() < 1e-15 * momentum.norm() * 4);
+  CHECK((x.head<3>() + x.tail<3>() - centre).norm() < 1e-15 * centre.norm() * 4);
+  CHECK((x.tail<3>() - x.head<3>()).norm() == doctest::Approx(thickness).epsilon(1e-12));
+  const Eigen::Vector3d relative = v.tail<3>() - v.head<3>();
+  CHECK(std::abs(relative.dot(n)) < 1e-15);               // the approach stopped
+  CHECK((relative - tangential).norm() < 1e-15);          // the sliding of one past the other kept
+}
