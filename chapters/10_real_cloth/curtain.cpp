@@ -76,6 +76,12 @@ const std::vector<MethodRow> methods = {
     {"ie_1newton_cg", frame_steps},
     {"ie_newton_cg", frame_steps, 1, false},
     {"local_global_10", frame_steps},
+    {"xpbd_10_4", {1.0 / 60}},
+    {"xpbd_10_16", {1.0 / 60}},
+    {"xpbd_10_64", {1.0 / 60}},
+    {"small_steps_64", {1.0 / 60}},
+    {"small_steps_256", {1.0 / 60}},
+    {"small_steps_512", {1.0 / 60}},
 };
 // [curtain_methods]
 
