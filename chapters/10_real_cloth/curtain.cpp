@@ -279,7 +279,7 @@ MarkdownTable runs_table(const SceneResult& r) {
 /// frame, or the note that standing still meets it.
 MarkdownTable levels_table(const std::vector<SceneResult>& results) {
   MarkdownTable t({"scene", "motion over the frames", "accuracy over the frames", "fastest run that reached it",
-                   "CPU time [s]", "fastest implicit run that reached it"},
+                   "CPU time [s]", "fastest implicit or position-based run that reached it"},
                   "lrllrl");
   for (const SceneResult& r : results) {
     for (const Level& level : levels(r)) {

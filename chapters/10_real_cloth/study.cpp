@@ -40,8 +40,8 @@ Configuration configuration(const std::string& key) {
   if (key.rfind("ie_", 0) == 0) {
     c.method = "implicit_euler";
     // Full Newton: the exact Jacobian (block LDU for the damped cloth), or the definite one with CG. From the flat
-    // sheet at rest a frame-sized step takes Newton through compressed, indefinite states, and its line search
-    // needs dozens of iterations on the first step (Chapter 4), so it is allowed 100. Its tolerance, 1e-6
+    // sheet at rest a frame-sized step takes Newton through compressed, indefinite states, where its line search
+    // on the incremental potential may backtrack (Chapter 4); the cap of 100 is a safeguard. Its tolerance, 1e-6
     // relative in the velocity, is a position error below 1e-6 h, far under every error this chapter measures.
     NewtonSettings& newton = c.settings.newton;
     newton.max_iterations = 100;
