@@ -44,11 +44,14 @@ do for [scene in "curtain swing corners"] {
   set arrow 2 from graph 0, first 1e-2 to graph 1, first 1e-2 nohead dt 2 lc rgb "#888888"
   set arrow 3 from graph 0, first 1e-3 to graph 1, first 1e-3 nohead dt 2 lc rgb "#888888"
   ok(m) = (strcol(1) eq m && strcol(10) eq "ok")
+  okp(prefix) = (strstrt(strcol(1), prefix) == 1 && strcol(10) eq "ok")
   plot F u (ok("symplectic_euler") ? $4 : 1/0):6 w p pt 7 ps 1.5 lc rgb "#2ca02c" t "symplectic Euler", \
        F u (ok("rk4") ? $4 : 1/0):6 w p pt 5 ps 1.5 lc rgb "#1f77b4" t "RK4", \
        F u (ok("ie_1newton_cg") ? $4 : 1/0):6 w lp pt 9 ps 1.3 lc rgb "#ff7f0e" t "implicit Euler, 1 iteration (1/30, 1/60, 1/120)", \
        F u (ok("ie_newton_cg") ? $4 : 1/0):6 w lp pt 11 ps 1.3 lc rgb "#d62728" t "implicit Euler, Newton", \
-       F u (ok("local_global_10") ? $4 : 1/0):6 w lp pt 13 ps 1.3 lc rgb "#e377c2" t "local/global, 10 iterations"
+       F u (ok("local_global_10") ? $4 : 1/0):6 w lp pt 13 ps 1.3 lc rgb "#e377c2" t "local/global, 10 iterations", \
+       F u (okp("xpbd_") ? $4 : 1/0):6 w lp pt 15 ps 1.3 lc rgb "#8c564b" t "XPBD, 10 iterations (4, 16, 64 substeps a frame)", \
+       F u (okp("small_steps_") ? $4 : 1/0):6 w lp pt 6 ps 1.3 lc rgb "#17becf" t "small steps (64, 256, 512 substeps a frame)"
 }
 unset multiplot
 unset arrow 1

@@ -97,6 +97,9 @@ void refinement(const Settings& s) {
     if (k + 1 < sizes.size()) {
       for (int f = 1; f <= snapshots; ++f) {
         // [refinement_compare]
+        // motion[k][f]: every particle's position at snapshot f (t = f T / 5) on the grid with sizes[k] particles
+        // per side (fabric_motion above), particle (i, j) at entry i n + j. Its partner on the next finer grid,
+        // with sizes[k + 1] per side, is particle (2i, 2j).
         double distance = 0;
         const int n = sizes[k], fine = sizes[k + 1];
         for (int i = 0; i < n; ++i)
@@ -419,6 +422,10 @@ void map(const Settings& s, const std::map<double, Curves>& curves, const std::v
   ch10::write_text(s.out, "step_cost.dat", cost_dat);
 
   // [cost_model]
+  // cost[method][n]: the CPU seconds of one step on the n x n fabric, measured at K = 1e5 N/m (or extrapolated
+  // from the two largest measured sizes: the step-cost table) and used for every K; cost_proxy(method) names the
+  // method whose step stands for this one's (one Newton iteration's for full Newton's, 10 local/global
+  // iterations' for any number).
   // 2. Predicted CPU time of each method on the n x n fabric of stiffness K to reach a tolerance: its cheapest run
   //    that reached it on the 20 x 20 fabric (same K), with the time per step scaled by the measured growth of a
   //    step with the grid and, for an explicit method, the number of steps scaled by omega_max(n) / omega_max(20):

@@ -27,7 +27,8 @@ namespace {
 
 // A method of the chapter, parsed from its key: a registry name as it stands ("symplectic_euler", "rk4"),
 // "ie_<newton|1newton>_<direct|cg>" for the registry's implicit Euler with full Newton or one iteration, on the
-// direct or the CG path, or "local_global_<iterations>".
+// direct or the CG path, "local_global_<iterations>", "xpbd_<iterations>_<substeps>" (iterations per substep,
+// substeps per step) or "small_steps_<substeps>".
 struct Configuration {
   std::string method;  ///< the registry's name
   MethodSettings settings;
@@ -39,8 +40,8 @@ Configuration configuration(const std::string& key) {
   if (key.rfind("ie_", 0) == 0) {
     c.method = "implicit_euler";
     // Full Newton: the exact Jacobian (block LDU for the damped cloth), or the definite one with CG. From the flat
-    // sheet at rest a frame-sized step takes Newton through compressed, indefinite states, and its line search
-    // needs dozens of iterations on the first step (Chapter 4), so it is allowed 100. Its tolerance, 1e-6
+    // sheet at rest a frame-sized step takes Newton through compressed, indefinite states, where its line search
+    // on the incremental potential may backtrack (Chapter 4); the cap of 100 is a safeguard. Its tolerance, 1e-6
     // relative in the velocity, is a position error below 1e-6 h, far under every error this chapter measures.
     NewtonSettings& newton = c.settings.newton;
     newton.max_iterations = 100;
@@ -63,6 +64,17 @@ Configuration configuration(const std::string& key) {
     c.method = "local_global";
     c.settings.local_global_iterations = std::stoi(key.substr(13));
     c.detail = ", " + key.substr(13) + " iterations";
+  } else if (key.rfind("xpbd_", 0) == 0) {
+    c.method = "xpbd";
+    const std::size_t split = key.find('_', 5);
+    if (split == std::string::npos) throw std::logic_error("ch10: unknown method " + key);
+    c.settings.xpbd_iterations = std::stoi(key.substr(5, split - 5));
+    c.settings.substeps = std::stoi(key.substr(split + 1));
+    c.detail = ", " + key.substr(5, split - 5) + " iterations, " + key.substr(split + 1) + " substeps";
+  } else if (key.rfind("small_steps_", 0) == 0) {
+    c.method = "small_steps";
+    c.settings.substeps = std::stoi(key.substr(12));
+    c.detail = ", " + key.substr(12) + " substeps";
   }
   find_method(c.method);  // throws for a name the registry does not know
   return c;
