@@ -497,8 +497,8 @@ TEST_CASE("ch10_xpbd: an experiment program on its own scenes takes --out only")
 #ifdef CLOTH_HAVE_CH12_BENDING
 TEST_CASE("ch12_bending: bad input gives status 2, one line naming the flag, nothing written") {
   // A static single run: the scene flags it uses, no run flags; --grid and --pins only to refuse them.
-  const std::vector<std::string> unused = {"--K-flexion", "--damping", "--damping-model", "--springs",
-                                           "--v0",        "--dt",      "--t-end",         "--frames"};
+  const std::vector<std::string> unused = {"--K-flexion", "--damping", "--damping-model", "--springs", "--v0",
+                                           "--swing",     "--dt",      "--t-end",         "--frames"};
   std::vector<BadInput> cases;
   for (const BadInput& c : shared_flag_cases())
     if (std::find(unused.begin(), unused.end(), c.args.front()) == unused.end()) cases.push_back(c);
