@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-/// The files --report-runs writes, for prepare_outputs.
+/// The files `--report-runs` writes, for prepare_outputs.
 std::vector<std::string> report_outputs();
 
 /// Writes them into `dir`; `full` refines the convergence study further. `command` is the line under each table.
