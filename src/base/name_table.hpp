@@ -6,6 +6,7 @@
 #include "base/input_error.hpp"
 
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +31,13 @@ class NameTable {
     for (const Entry& e : entries_)
       if (name == e.name) return e.value;
     throw InputError("unknown " + what_ + " '" + name + "': expected one of " + accepted());
+  }
+
+  /// The value called `name`, or nothing when the table has no such name (for a caller that tries several tables).
+  [[nodiscard]] std::optional<Enum> find(const std::string& name) const {
+    for (const Entry& e : entries_)
+      if (name == e.name) return e.value;
+    return std::nullopt;
   }
 
   /// The name of `value` ("?" for a value the table does not list, which a test rules out).
