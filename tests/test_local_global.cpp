@@ -7,37 +7,14 @@
 #include "integrators/method_registry.hpp"
 #include "integrators/symplectic_euler.hpp"
 #include "base/input_error.hpp"
+#include "light_cloth.hpp"
 
 #include <cmath>
 
 using namespace cloth;
-
-namespace {
-
-// A light, stiff 8 x 8 cloth hanging from its corners, moved for a while so that the step starts from a bent,
-// moving state.
-struct Start {
-  Vector x, v;
-};
-Start moving_state(const Scene& scene) {
-  ForceField field(scene);
-  SymplecticEuler warmup(field);
-  Start s{scene.initial_positions(), scene.initial_velocities()};
-  for (int k = 0; k < 4000; ++k) warmup.step(2.5e-5, s.x, s.v);
-  return s;
-}
-
-SceneParams stiff_light_cloth(double D) {
-  SceneParams p;
-  p.grid = Grid{8, 8, 0.05};
-  p.mass = 6.25e-4;
-  p.stiffness = 1e3;
-  p.damping = D;
-  p.initial_velocity_z = -0.5;
-  return p;
-}
-
-}  // namespace
+using cloth::testing::light_cloth;
+using cloth::testing::moving_state;
+using cloth::testing::State;
 
 TEST_CASE("local/global converges to the Newton implicit Euler step as its iterations grow") {
   // At h = 1e-3 (h^2 K / m = 1.6) the iteration contracts fast and reaches Newton's step to rounding; at a frame
@@ -52,8 +29,8 @@ TEST_CASE("local/global converges to the Newton implicit Euler step as its itera
     for (double D : {0.0, 0.01}) {
       CAPTURE(D);
       CAPTURE(c.h);
-      const Scene scene(stiff_light_cloth(D));
-      const Start s = moving_state(scene);
+      const Scene scene(light_cloth(D));
+      const State s = moving_state(scene);
       ForceField newton_field(scene);
       NewtonSettings tight;
       tight.tolerance = 1e-10;  // |dv| below about 1e-10 m/s: x1 to ~1e-12 m
@@ -90,7 +67,7 @@ TEST_CASE("local/global converges to the Newton implicit Euler step as its itera
 }
 
 TEST_CASE("local/global factors once per step size and refuses fewer than one iteration") {
-  const Scene scene(stiff_light_cloth(0.0));
+  const Scene scene(light_cloth(0.0));
   ForceField field(scene);
   LocalGlobal lg(field, 3);
   Vector x = scene.initial_positions(), v = scene.initial_velocities();
@@ -103,7 +80,7 @@ TEST_CASE("local/global factors once per step size and refuses fewer than one it
 }
 
 TEST_CASE("the registry makes local/global with the iterations its settings ask for") {
-  const Scene scene(stiff_light_cloth(0.01));
+  const Scene scene(light_cloth(0.01));
   ForceField field(scene);
   MethodSettings settings;
   settings.local_global_iterations = 7;

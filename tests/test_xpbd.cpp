@@ -9,38 +9,18 @@
 #include "integrators/method_registry.hpp"
 #include "integrators/symplectic_euler.hpp"
 #include "integrators/xpbd.hpp"
+#include "light_cloth.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseLU>
 #include <cmath>
 
 using namespace cloth;
+using cloth::testing::light_cloth;
+using cloth::testing::moving_state;
+using cloth::testing::State;
 
 namespace {
-
-// A light, stiff 8 x 8 cloth hanging from its corners (Chapter 10's fabric, smaller), moved for a while by
-// symplectic Euler at a stable step so that a step starts from a bent, moving state.
-SceneParams light_cloth(double D) {
-  SceneParams p;
-  p.grid = Grid{8, 8, 0.05};
-  p.mass = 6.25e-4;
-  p.stiffness = 1e3;
-  p.damping = D;
-  p.initial_velocity_z = -0.5;
-  return p;
-}
-
-struct State {
-  Vector x, v;
-};
-
-State moving_state(const Scene& scene) {
-  ForceField field(scene);
-  SymplecticEuler warmup(field);
-  State s{scene.initial_positions(), scene.initial_velocities()};
-  for (int k = 0; k < 4000; ++k) warmup.step(2.5e-5, s.x, s.v);
-  return s;
-}
 
 // The total momentum m sum v of the free particles.
 Eigen::Vector3d momentum(const Vector& v, double m) { return m * v.reshaped(3, v.size() / 3).rowwise().sum(); }
