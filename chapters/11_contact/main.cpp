@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
   iterations.add_to(cli);
   return run_program(cli.program(), [&] {
     Options opt = cli.parse(argc, argv);
-    if (report) return run_report(cli, argc, argv, opt);
+    if (report) return run_report(argc, argv, opt);
     return single_run(opt, kind, flags, method_name, newton, iterations, cli.program());
   });
 }

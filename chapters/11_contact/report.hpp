@@ -10,6 +10,6 @@ namespace ch11 {
 void add_report_flags(cloth::CommandLine& cli);
 
 /// Runs the studies into opt.run.out_dir; the command is recorded in each fragment. Returns the exit status.
-int run_report(const cloth::CommandLine& cli, int argc, char** argv, const cloth::Options& opt);
+int run_report(int argc, char** argv, const cloth::Options& opt);
 
 }  // namespace ch11
