@@ -460,6 +460,8 @@ TEST_CASE("ch11_contact: bad input gives status 2, one line naming the flag, not
                      {{"--method", "implicit_euler", "--jacobian", "exact"}, {"--jacobian", "expected definite"}},
                      {{"--method", "rk4", "--newton", "full"}, {"--newton", "rk4 has no Newton iteration"}},
                      {{"--scene", "fold", "--sphere-radius", "0"}, {"--sphere-radius", "> 0"}},
+                     {{"--quick"}, {"--quick", "--report-runs"}},
+                     {{"--report-runs", "--scene", "fold"}, {"--scene", "--quick and --out only"}},
                  });
 }
 

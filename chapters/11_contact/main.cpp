@@ -135,6 +135,8 @@ int main(int argc, char** argv) {
   return run_program(cli.program(), [&] {
     Options opt = cli.parse(argc, argv);
     if (report) return run_report(argc, argv, opt);
+    if (std::find(opt.given.begin(), opt.given.end(), "--quick") != opt.given.end())
+      throw InputError("--quick: a setting of --report-runs, which was not given");
     return single_run(opt, kind, flags, method_name, newton, iterations, cli.program());
   });
 }

@@ -48,7 +48,7 @@ void SelfCollision::find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) 
   work_.pairs_found += static_cast<long long>(pairs_.size());
 }
 
-int SelfCollision::resolve(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<Eigen::VectorXd> v) {
+int SelfCollision::resolve(Eigen::VectorXd& x, Eigen::VectorXd& v) {
   ++work_.passes;
   const int corrected = resolve_self_contacts(pairs_, thickness_, x, v, 1e-3);
   work_.pairs_corrected += corrected;

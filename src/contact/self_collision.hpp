@@ -43,7 +43,7 @@ class SelfCollision {
   /// One pass over the candidates: the pairs closer than delta (1 - 1e-3) parted to delta (resolve_self_contacts).
   /// Returns the pairs corrected; a caller repeats it until none is (a correction may bring another pair too
   /// close), and the passes end once every pair is within a thousandth of the thickness.
-  int resolve(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<Eigen::VectorXd> v);
+  int resolve(Eigen::VectorXd& x, Eigen::VectorXd& v);
 
   /// The candidates of the last find_candidates.
   [[nodiscard]] const std::vector<std::pair<int, int>>& candidates() const { return pairs_; }

@@ -47,6 +47,14 @@ void SpatialHash::build(const Eigen::Ref<const Eigen::VectorXd>& x) {
   // shift the array down by one and close it with the total.
   std::rotate(bucket_start_.begin(), bucket_start_.begin() + 1, bucket_start_.end());
   bucket_start_.back() = n;
+  // Each bucket's particles with their cells and positions side by side: a query then reads a bucket from one
+  // stretch of memory instead of jumping to each particle's entries.
+  entries_.resize(static_cast<std::size_t>(n));
+  for (std::size_t e = 0; e < entries_.size(); ++e) {
+    const int p = sorted_[e];
+    const long long* const c = &cells_[3 * static_cast<std::size_t>(p)];
+    entries_[e] = {p, {c[0], c[1], c[2]}, x.segment<3>(3 * p)};
+  }
 }
 // [hash_build]
 
@@ -69,12 +77,12 @@ void SpatialHash::pairs_within(const Eigen::Ref<const Eigen::VectorXd>& x, doubl
           const auto b = static_cast<std::size_t>(bucket(i, j, k));
           const auto end = static_cast<std::size_t>(bucket_start_[b + 1]);
           for (auto e = static_cast<std::size_t>(bucket_start_[b]); e < end; ++e) {
-            const int c = sorted_[e];
+            const Entry& entry = entries_[e];
+            const int c = entry.particle;
             // A bucket may hold particles of other cells that hash alike: only those of cell (i, j, k) count
             // here, so each particle is read once per query and each pair found once.
-            const long long* const cc = &cells_[3 * static_cast<std::size_t>(c)];
-            if ((c > a || !own) && cc[0] == i && cc[1] == j && cc[2] == k &&
-                (x.segment<3>(3 * c) - xa).squaredNorm() < r2)
+            if ((c > a || !own) && entry.cell[0] == i && entry.cell[1] == j && entry.cell[2] == k &&
+                (entry.x - xa).squaredNorm() < r2)
               pairs.emplace_back(std::min(a, c), std::max(a, c));
           }
         }

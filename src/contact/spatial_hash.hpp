@@ -37,6 +37,12 @@ class SpatialHash {
   std::vector<int> bucket_start_;  // particles of bucket b: sorted_[bucket_start_[b] .. bucket_start_[b + 1])
   std::vector<int> sorted_;
   std::vector<long long> cells_;  // the cell (i, j, k) of each particle, 3 per particle
+  struct Entry {
+    int particle;
+    long long cell[3];  // NOLINT(*-avoid-c-arrays): three indices read side by side
+    Eigen::Vector3d x;
+  };
+  std::vector<Entry> entries_;  // sorted_ with each particle's cell and position, in bucket order
 };
 
 /// The pairs a brute-force comparison of every pair finds: the independent check of the hash.
