@@ -38,18 +38,23 @@ plot for [k = 0:30:10] data.'/fold_frames.dat' index k using 4:5 with points pt 
 set size noratio
 
 # ---- one animation per scene: the mesh at every kept frame ----
+reset
 unset key
 set view 62, 32
 set xyplane at 0
 set border 4095 lc rgb "#808080"
-set view equal xyz
-set ticslevel 0
+set xlabel "x [m]"
+set ylabel "y [m]"
+set zlabel "z [m]" rotate by 90
 scenes = "incline sphere fold"
 scene_frames = "51 51 31"  # the studies keep 50, 50 and 30 frames after the first
 do for [s = 1:3] {
   scene = word(scenes, s)
   frames = word(scene_frames, s) + 0
   file = data.'/'.scene.'_frames.dat'
+  set autoscale x  # stats keeps to the ranges set, so clear the last scene's first
+  set autoscale y
+  set autoscale z
 
   set terminal gif animate delay 8 loop 0 optimize size 480,420 font "Sans,9"
   set output plots.'/ch11_'.scene.'.gif'
