@@ -58,12 +58,16 @@ do for [s = 1:3] {
 
   set terminal gif animate delay 8 loop 0 optimize size 480,420 font "Sans,9"
   set output plots.'/ch11_'.scene.'.gif'
+  # Every column's extent first: stats of one column keeps to the x range, so no range is set before the last.
   stats file using 3 nooutput
-  set xrange [STATS_min - 0.05:STATS_max + 0.05]
+  x0 = STATS_min; x1 = STATS_max
   stats file using 4 nooutput
-  set yrange [STATS_min - 0.05:STATS_max + 0.05]
+  y0 = STATS_min; y1 = STATS_max
   stats file using 5 nooutput
-  set zrange [(STATS_min < 0 ? STATS_min - 0.05 : 0):STATS_max + 0.05]
+  z0 = STATS_min; z1 = STATS_max
+  set xrange [x0 - 0.05:x1 + 0.05]
+  set yrange [y0 - 0.05:y1 + 0.05]
+  set zrange [(z0 < 0 ? z0 - 0.05 : 0):z1 + 0.05]
   do for [k = 0:frames - 1] {
     set title sprintf("%s, frame %d of %d", scene, k, frames - 1)
     splot file index k using 3:4:5 with lines lc rgb "#2c3e50"
