@@ -450,12 +450,19 @@ TEST_CASE("ch11_contact: bad input gives status 2, one line naming the flag, not
   expect_refused("ch11_contact", cases);
   expect_refused("ch11_contact",
                  {
-                     {{"--scene", "fold"}, {"--scene", "'fold'", "incline", "sphere"}},
+                     {{"--scene", "drape"}, {"--scene", "'drape'", "incline", "sphere", "fold"}},
                      {{"--mu-s", "0.1"}, {"--mu-k", "at most --mu-s = 0.1"}},
                      {{"--mu-s", "-1"}, {"--mu-s", ">= 0"}},
                      {{"--thickness", "0"}, {"--thickness", "> 0"}},
                      {{"--incline-angle", "90"}, {"--incline-angle", "[0, 80]"}},
-                     {{"--method", "implicit_euler", "--newton", "one"}, {"--newton", "filtered conjugate gradients"}},
+                     {{"--method", "implicit_euler", "--newton", "modified"}, {"--newton modified", "one or full"}},
+                     {{"--method", "implicit_euler", "--linear-solver", "ldlt"}, {"--linear-solver", "expected cg"}},
+                     {{"--method", "implicit_euler", "--jacobian", "exact"}, {"--jacobian", "expected definite"}},
+                     {{"--method", "rk4", "--newton", "full"}, {"--newton", "rk4 has no Newton iteration"}},
+                     {{"--scene", "fold", "--sphere-radius", "0"}, {"--sphere-radius", "> 0"}},
+                     {{"--quick"}, {"--quick", "--report-runs"}},
+                     {{"--scene", "fold", "--method", "implicit_euler"}, {"--method implicit_euler", "self-collision"}},
+                     {{"--report-runs", "--scene", "fold"}, {"--scene", "--quick and --out only"}},
                  });
 }
 
@@ -480,6 +487,22 @@ TEST_CASE("ch11_contact: run.txt records the geometry of each scene, and the fra
     CHECK(s.find(std::string("contact = ") +
                  (std::string(method) == "implicit_euler" ? "filtered_cg" : "inequality_constraints")) !=
           std::string::npos);
+  }
+  const ProgramRun newton = folder.run("ch11_contact", {"--scene", "sphere", "--method", "implicit_euler", "--newton",
+                                                        "full", "--grid", "6x6", "--spacing", "0.1", "--dt", "0.005",
+                                                        "--t-end", "0.3", "--out", "newton"});
+  CAPTURE(newton.err);
+  REQUIRE(newton.status == 0);
+  CHECK(read_text(folder.cwd() / "newton" / "run.txt").find("newton = full\n") != std::string::npos);
+  const ProgramRun fold = folder.run("ch11_contact", {"--scene", "fold", "--grid", "6x20", "--t-end", "0.05", "--out",
+                                                      "fold"});
+  CAPTURE(fold.err);
+  REQUIRE(fold.status == 0);
+  const std::string f = read_text(folder.cwd() / "fold" / "run.txt");
+  for (const char* key : {"ground_z = 0\n", "thickness = 0.01\n", "self_collision = hash\n",
+                          "closest_self_distance_frames = ", "grid = 6x20\n"}) {
+    CAPTURE(key);
+    CHECK(f.find(key) != std::string::npos);
   }
 }
 #endif

@@ -207,6 +207,11 @@ std::vector<ProgramOutputs> every_output() {
 #ifdef CLOTH_HAVE_CH11_CONTACT
       {"ch11_contact", {}, run_files},
       {"ch11_contact", {"--scene", "sphere", "--method", "implicit_euler", "--grid", "6x6"}, run_files},
+      {"ch11_contact", {"--scene", "fold", "--grid", "6x20"}, run_files},
+      {"ch11_contact",
+       {"--report-runs", "--quick"},
+       {"incline.md", "incline.dat", "incline_frames.dat", "sphere.md", "sphere_energy.dat", "sphere_frames.dat",
+        "sphere_rest.md", "fold.md", "fold_frames.dat", "hash.md", "edge_crossing.md"}},
 #endif
 #ifdef CLOTH_HAVE_CH12_BENDING
       {"ch12_bending", {}, {"final.dat", "run.txt"}},
@@ -296,7 +301,7 @@ constexpr std::size_t folder_cases_ch10_cloth = 2 * (4 + 1);
 constexpr std::size_t folder_cases_ch10_cloth = 0;
 #endif
 #ifdef CLOTH_HAVE_CH11_CONTACT
-constexpr std::size_t folder_cases_ch11_contact = 2 * (4 + 1);
+constexpr std::size_t folder_cases_ch11_contact = 3 * (4 + 1) + 11 + 1;
 #else
 constexpr std::size_t folder_cases_ch11_contact = 0;
 #endif

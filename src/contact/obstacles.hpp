@@ -44,6 +44,8 @@ struct ContactModel {
   std::vector<Obstacle> obstacles;
   double thickness = 0.005;  ///< [m]
   Friction friction;
+  /// Whether the cloth also collides with itself (contact/self_collision.hpp), with the same thickness.
+  bool self_collision = false;
 };
 
 /// Throws InputError naming the first parameter out of range (thickness > 0, 0 <= mu_k <= mu_s, unit normals,

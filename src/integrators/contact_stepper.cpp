@@ -3,6 +3,7 @@
 
 #include "integrators/xpbd.hpp"
 
+#include <chrono>
 #include <utility>
 
 namespace cloth {
@@ -29,6 +30,7 @@ ContactStepper::ContactStepper(std::unique_ptr<Stepper> inner, ContactModel mode
   // XPBD takes contact inside its substeps, as inequality constraints; the correction after its step then finds
   // nothing left to do but guard the end state.
   if (auto* xpbd = dynamic_cast<Xpbd*>(inner_.get())) xpbd->set_contact(&model_);
+  if (model_.self_collision) self_.emplace(field_.scene().initial_positions(), model_.thickness);
 }
 
 // [contact_step]
@@ -41,9 +43,25 @@ bool ContactStepper::step(double h, Vector& x, Vector& v) {
     failure_ = inner_->failure();
     return false;  // the inner stepper left (x, v) unchanged
   }
-  last_contacts_ = resolve_obstacle_contacts(model_, x0_, x, v);
+  if (self_) correct_with_self_collision(h, x, v);
+  else last_contacts_ = resolve_obstacle_contacts(model_, x0_, x, v);
   return true;
 }
 // [contact_step]
+
+// [self_step]
+void ContactStepper::correct_with_self_collision(double h, Vector& x, Vector& v) {
+  const auto start = std::chrono::steady_clock::now();
+  self_->count_clamped(self_->clamp(x0_, h, x, v));
+  last_contacts_ = resolve_obstacle_contacts(model_, x0_, x, v);
+  // Parting a pair may push a particle into the ground or towards a third one: alternate until nothing moves.
+  self_->find_candidates(x);
+  for (int pass = 0; pass < max_self_passes; ++pass) {
+    if (self_->resolve(x, v) == 0) break;
+    resolve_obstacle_contacts(model_, x0_, x, v);
+  }
+  self_->add_seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+}
+// [self_step]
 
 }  // namespace cloth

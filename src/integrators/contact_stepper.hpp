@@ -3,9 +3,11 @@
 #pragma once
 
 #include "contact/obstacles.hpp"
+#include "contact/self_collision.hpp"
 #include "integrators/stepper.hpp"
 
 #include <memory>
+#include <optional>
 
 namespace cloth {
 
@@ -24,18 +26,26 @@ class ContactStepper final : public Stepper {
   /// The wrapped method's name: contact changes the scene, not the method.
   [[nodiscard]] std::string name() const override { return inner_->name(); }
 
-  /// The inner step, then resolve_obstacle_contacts on its end state. Counts the inner stepper's work as its own.
+  /// The inner step, then resolve_obstacle_contacts on its end state. With self-collision, the displacement is
+  /// clamped first, and self-contacts and obstacle contacts are resolved in turn until no pair is left (at most
+  /// max_self_passes passes). Counts the inner stepper's work as its own.
   bool step(double h, Vector& x, Vector& v) override;
 
   [[nodiscard]] const ContactModel& model() const { return model_; }
   [[nodiscard]] const Stepper& inner() const { return *inner_; }
   /// Particle-obstacle contacts corrected by the last step.
   [[nodiscard]] int last_contacts() const { return last_contacts_; }
+  /// The self-collision state (its work and time), when the model asks for it.
+  [[nodiscard]] const SelfCollision* self_collision() const { return self_ ? &*self_ : nullptr; }
+  static constexpr int max_self_passes = 8;
 
  private:
+  void correct_with_self_collision(double h, Vector& x, Vector& v);
+
   std::unique_ptr<Stepper> inner_;
   ContactModel model_;
   Vector x0_;  // the step's start positions, which the friction rule measures the displacement from
+  std::optional<SelfCollision> self_;
   int last_contacts_ = 0;
 };
 

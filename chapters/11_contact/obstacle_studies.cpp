@@ -1,0 +1,130 @@
+// The obstacle studies of Chapter 11: the incline against its closed form, and the drape over the sphere with
+// every family of method, each kept out of the obstacles its own way.
+#include "studies.hpp"
+
+#include "base/format_number.hpp"
+#include "integrators/contact_implicit_euler.hpp"
+#include "integrators/contact_stepper.hpp"
+#include "integrators/method_registry.hpp"
+#include "program/fragment.hpp"
+#include "program/output.hpp"
+
+#include <cmath>
+#include <numbers>
+
+using namespace cloth;
+
+namespace ch11 {
+
+namespace {
+
+constexpr double g = 9.81;
+
+// The methods of the page's table, one per family, by the name the table gives them.
+struct StudyMethod {
+  const char* label;   // the table's name
+  const char* family;  // how it keeps out of the obstacles
+  double h;            // its step on the sphere [s]
+};
+constexpr StudyMethod sphere_methods[] = {
+    {"symplectic_euler", "explicit: corrected after the step", 5e-4},
+    {"rk4", "explicit: corrected after the step", 5e-4},
+    {"implicit_euler (one iteration)", "implicit: filtered CG", 1e-2},
+    {"implicit_euler (Newton)", "implicit: filtered CG, each iteration", 1e-2},
+    {"sdirk2", "implicit Runge-Kutta: corrected after the step", 1e-2},
+    {"local_global", "local/global: corrected after the step", 1e-2},
+    {"xpbd", "position based: inequality constraints", 1e-2},
+};
+
+std::unique_ptr<Stepper> study_stepper(const std::string& label, ForceField& field, const ContactModel& model) {
+  if (label == "implicit_euler (one iteration)") return std::make_unique<ContactImplicitEuler>(field, model);
+  if (label == "implicit_euler (Newton)") return std::make_unique<ContactImplicitEuler>(field, model, FilteredNewton{50, 1e-6});
+  return std::make_unique<ContactStepper>(make_stepper(label, field), model);
+}
+
+// Mean displacement of the sheet down the slope.
+double mean_downhill(const Vector& x, const Vector& x0, double theta) {
+  const Eigen::Vector3d down(std::cos(theta), 0, -std::sin(theta));
+  double sum = 0;
+  for (Eigen::Index s = 0; s < x.size() / 3; ++s) sum += (x - x0).segment<3>(3 * s).dot(down);
+  return sum / static_cast<double>(x.size() / 3);
+}
+
+}  // namespace
+
+// [incline_study]
+void incline_study(const Study& study) {
+  MarkdownTable table({"method", "angle [deg]", "tan / mu_s", "measured a [m/s^2]", "g (sin - mu_k cos) [m/s^2]",
+                       "difference", "deepest [% of thickness]"}, "lrrrrrr");
+  std::string curves = "# t mean_downhill_displacement closed_form (symplectic Euler, per angle, one block each)\n";
+  const double T = 0.5;
+  for (const double degrees : {std::atan(0.9 * 0.3) * 180 / std::numbers::pi, 30.0}) {
+    ContactFlags flags;
+    flags.incline_degrees = degrees;
+    const double theta = degrees * std::numbers::pi / 180;
+    // Coulomb: at rest it stays at rest while tan theta <= mu_s; sliding, mu_k brakes it.
+    const double a = std::tan(theta) <= 0.3 ? 0.0 : g * (std::sin(theta) - 0.2 * std::cos(theta));
+    for (const char* label : {"symplectic_euler", "rk4", "implicit_euler (one iteration)", "xpbd", "small_steps"}) {
+      const BuiltScene b = build_scene(SceneKind::incline, flags);
+      const auto stepper = study_stepper(label, *b.field, b.model);
+      const SteppedRun run = step_run(*stepper, b, 5e-4, T, 50);
+      const double s = mean_downhill(run.x, b.scene->initial_positions(), theta);
+      const double measured = 2 * s / (T * T);  // s = a T^2 / 2 from rest
+      table.add_row({label, format_fixed(degrees, 2), format_fixed(std::tan(theta) / 0.3, 2), format_number(measured, 4),
+                     format_number(a, 4), a > 0 ? format_number(measured / a - 1, 2) : "(at rest)",
+                     format_number(std::max(0.0, run.deepest) / b.model.thickness * 100, 2)});
+      if (std::string(label) != "symplectic_euler") continue;
+      for (const Frame& f : run.frames)
+        curves += format_number(f.t, 6) + " " + format_number(mean_downhill(f.positions, b.scene->initial_positions(), theta), 8) +
+                  " " + format_number(0.5 * a * f.t * f.t, 8) + "\n";
+      curves += "\n\n";
+      if (degrees == 30.0) write_frames(study.dir + "/incline_frames.dat", b.params.grid, run.frames);
+    }
+  }
+  write_text(study.dir + "/incline.dat", curves);
+  write_table_fragment(study.dir + "/incline.md", table, study.command);
+}
+// [incline_study]
+
+// [sphere_study]
+// Every family on a 10 x 10 sheet of the scene's fabric over a sphere of radius 0.15 m, to T = 4 s; then the
+// scene itself (20 x 20 over 0.3 m, T = 10 s) with symplectic Euler for the animation.
+void sphere_study(const Study& study) {
+  MarkdownTable table({"method", "keeps out by", "h [s]", "deepest after any step [% of thickness]",
+                       "kinetic energy at T / peak", "seconds"}, "llrrrr");
+  const double T = 4;
+  const Grid small{10, 10, 0.05};
+  ContactFlags small_sphere;
+  small_sphere.sphere_radius = 0.15;
+  std::string energy = "# t kinetic/peak, one block per method in the table's order\n";
+  for (const StudyMethod& m : sphere_methods) {
+    const BuiltScene b = build_scene(SceneKind::sphere, small_sphere, &small);
+    const auto stepper = study_stepper(m.label, *b.field, b.model);
+    const SteppedRun run = step_run(*stepper, b, m.h, T, 60);
+    double peak = 0;
+    for (const double k : run.kinetic) peak = std::max(peak, k);
+    const std::string ratio = run.ok ? format_number(run.kinetic.back() / peak, 2) : "failed at t = " + format_number(run.t.empty() ? 0 : run.t.back(), 3) + " s";
+    table.add_row({m.label, m.family, format_number(m.h), format_number(std::max(0.0, run.deepest) / b.model.thickness * 100, 2),
+                   ratio, format_fixed(run.seconds, 2)});
+    energy += "# " + std::string(m.label) + "\n";
+    const std::size_t stride = std::max<std::size_t>(1, run.t.size() / 400);
+    for (std::size_t k = 0; k < run.t.size(); k += stride)
+      energy += format_number(run.t[k], 6) + " " + format_number(std::max(run.kinetic[k] / peak, 1e-16), 6) + "\n";
+    energy += "\n\n";
+  }
+  write_text(study.dir + "/sphere_energy.dat", energy);
+  write_table_fragment(study.dir + "/sphere.md", table, study.command);
+  const BuiltScene b = build_scene(SceneKind::sphere, ContactFlags{});
+  ContactStepper stepper(make_stepper("symplectic_euler", *b.field), b.model);
+  const SteppedRun run = step_run(stepper, b, 5e-4, 10, 50);
+  double peak = 0;
+  for (const double k : run.kinetic) peak = std::max(peak, k);
+  write_text_fragment(study.dir + "/sphere_rest.md",
+                      "kinetic energy at T = 10 s: " + format_number(run.kinetic.back() / peak, 2) +
+                          " of its peak; deepest after any step: " +
+                          format_number(std::max(0.0, run.deepest) / b.model.thickness * 100, 2) + " % of the thickness");
+  write_frames(study.dir + "/sphere_frames.dat", b.params.grid, run.frames);
+}
+// [sphere_study]
+
+}  // namespace ch11

@@ -1,0 +1,62 @@
+// The stepping loop of Chapter 11's studies.
+#include "studies.hpp"
+
+#include <chrono>
+#include <cmath>
+
+using namespace cloth;
+
+namespace ch11 {
+
+BuiltScene build_scene(SceneKind kind, const ContactFlags& flags, const Grid* grid) {
+  BuiltScene b;
+  SceneParams& p = b.params;
+  for (const auto& [flag, value] : scene_defaults(kind)) {
+    const std::string f = flag, text = value;
+    if (f == "--grid") {
+      const auto x = text.find('x');
+      p.grid.M = std::stoi(text.substr(0, x));
+      p.grid.N = std::stoi(text.substr(x + 1));
+    } else if (f == "--spacing") p.grid.d = std::stod(text);
+    else if (f == "--mass") p.mass = std::stod(text);
+    else if (f == "--K") p.stiffness = std::stod(text);
+    else if (f == "--damping") p.damping = std::stod(text);
+  }
+  p.pins = PinSet::none;
+  p.initial_velocity_z = 0;
+  if (grid) p.grid = *grid;
+  KeyValues unused;
+  b.model = place_scene(kind, flags, p, unused);
+  b.scene = std::make_unique<Scene>(p);
+  b.field = std::make_unique<ForceField>(*b.scene);
+  return b;
+}
+
+SteppedRun step_run(Stepper& stepper, const BuiltScene& built, double h, double T, int frames,
+                    const std::function<void(const Vector&)>& after_step) {
+  SteppedRun run;
+  run.x = built.scene->initial_positions();
+  run.v = built.scene->initial_velocities();
+  const auto steps = static_cast<long long>(std::llround(T / h));
+  const long long stride = std::max(1LL, steps / frames);
+  run.frames.push_back({0.0, run.x});
+  const double m = built.params.mass;
+  const auto start = std::chrono::steady_clock::now();
+  for (long long k = 1; k <= steps; ++k) {
+    if (!stepper.step(h, run.x, run.v)) {
+      run.ok = false;
+      run.failure = stepper.failure().reason;
+      break;
+    }
+    run.steps = k;
+    run.deepest = std::max(run.deepest, deepest_penetration(built.model, run.x));
+    run.t.push_back(static_cast<double>(k) * h);
+    run.kinetic.push_back(0.5 * m * run.v.squaredNorm());
+    if (after_step) after_step(run.x);
+    if (k % stride == 0) run.frames.push_back({static_cast<double>(k) * h, run.x});
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+}  // namespace ch11

@@ -1,0 +1,57 @@
+// Chapter 11's studies, one file each, and the stepping loop they share: every accepted step is checked against
+// the obstacles, frames are kept for the figures and animations.
+#pragma once
+
+#include "scenes.hpp"
+
+#include "contact/obstacles.hpp"
+#include "integrators/stepper.hpp"
+#include "integrators/simulate.hpp"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ch11 {
+
+/// Where a study writes, the command that measured it, and whether it runs its quick version.
+struct Study {
+  std::string dir;
+  std::string command;
+  bool quick = false;
+};
+
+/// A scene built from the chapter's defaults with `flags`, ready to step.
+struct BuiltScene {
+  cloth::SceneParams params;
+  cloth::ContactModel model;
+  std::unique_ptr<cloth::Scene> scene;
+  std::unique_ptr<cloth::ForceField> field;
+};
+[[nodiscard]] BuiltScene build_scene(SceneKind kind, const ContactFlags& flags, const cloth::Grid* grid = nullptr);
+
+/// What a stepped run gives the studies.
+struct SteppedRun {
+  bool ok = true;
+  std::string failure;
+  double deepest = -1;         ///< largest penetration (thickness - phi) after any accepted step [m]
+  double seconds = 0;          ///< wall time of the steps
+  long long steps = 0;
+  std::vector<double> t, kinetic;  ///< after every step
+  std::vector<cloth::Frame> frames;
+  cloth::Vector x, v;
+};
+
+/// Steps `stepper` from the scene's start with step h to T, keeping `frames` + 1 evenly spaced frames and calling
+/// `after_step` (when set) on each accepted state.
+SteppedRun step_run(cloth::Stepper& stepper, const BuiltScene& built, double h, double T, int frames,
+                    const std::function<void(const cloth::Vector&)>& after_step = {});
+
+void incline_study(const Study& study);
+void sphere_study(const Study& study);
+void fold_study(const Study& study);
+void hash_benchmark(const Study& study);
+void edge_crossing_study(const Study& study);
+
+}  // namespace ch11

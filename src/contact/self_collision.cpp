@@ -1,0 +1,75 @@
+// Self-collision in a run: the hash's close pairs less the pairs that are neighbours at rest, parted in place.
+#include "contact/self_collision.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace cloth {
+
+// Cells of side 1.5 delta, the largest distance queried: a close pair lies in one cell or in neighbouring ones. About
+// two buckets per particle keep collisions of distinct cells rare (Teschner et al. 2003).
+SelfCollision::SelfCollision(Eigen::VectorXd rest_positions, double thickness)
+    : rest_(std::move(rest_positions)), thickness_(thickness),
+      hash_(1.5 * thickness, std::max(16, static_cast<int>(2 * (rest_.size() / 3)))) {}
+
+// Pairs nearer than 2 delta at rest are neighbours: at the grid spacing d = delta they are the ends of a
+// structural, shear or flexion spring, which already keeps them apart; parting them too would fight the springs.
+// The rounding allowance keeps the flexion pairs, exactly 2 d apart, out.
+bool SelfCollision::apart_at_rest(int a, int b) const {
+  return (rest_.segment<3>(3 * b) - rest_.segment<3>(3 * a)).norm() > 2 * thickness_ * (1 + 1e-9);
+}
+
+// [clamp]
+int SelfCollision::clamp(const Eigen::Ref<const Eigen::VectorXd>& x0, double h, Eigen::Ref<Eigen::VectorXd> x1,
+                         Eigen::Ref<Eigen::VectorXd> v1) const {
+  const double reach = thickness_ / 2;  // per particle and step: two approaching particles close at most delta
+  int clamped = 0;
+  for (Eigen::Index s = 0; s < x1.size() / 3; ++s) {
+    const Eigen::Vector3d dx = x1.segment<3>(3 * s) - x0.segment<3>(3 * s);
+    const double length = dx.norm();
+    if (length > reach) {
+      x1.segment<3>(3 * s) = x0.segment<3>(3 * s) + (reach / length) * dx;
+      ++clamped;
+    }
+    const double speed = v1.segment<3>(3 * s).norm();
+    if (speed * h > reach) v1.segment<3>(3 * s) *= reach / (speed * h);
+  }
+  return clamped;
+}
+// [clamp]
+
+// [self_collision_pass]
+void SelfCollision::find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  hash_.build(x);
+  hash_.pairs_within(x, 1.5 * thickness_, pairs_);
+  ++work_.builds;
+  std::erase_if(pairs_, [&](const std::pair<int, int>& p) { return !apart_at_rest(p.first, p.second); });
+  work_.pairs_found += static_cast<long long>(pairs_.size());
+}
+
+int SelfCollision::resolve(Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  ++work_.passes;
+  const int corrected = resolve_self_contacts(pairs_, thickness_, x, v, 1e-3);
+  work_.pairs_corrected += corrected;
+  return corrected;
+}
+// [self_collision_pass]
+
+std::vector<std::pair<int, int>> SelfCollision::candidates_brute_force(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  std::vector<std::pair<int, int>> pairs = pairs_within_brute_force(x, 1.5 * thickness_);
+  std::erase_if(pairs, [&](const std::pair<int, int>& p) { return !apart_at_rest(p.first, p.second); });
+  return pairs;
+}
+
+double SelfCollision::closest_distance(const Eigen::Ref<const Eigen::VectorXd>& x, double rest_factor) {
+  hash_.build(x);
+  hash_.pairs_within(x, thickness_, pairs_);
+  double closest = thickness_;
+  for (const auto& [a, b] : pairs_)
+    if ((rest_.segment<3>(3 * b) - rest_.segment<3>(3 * a)).norm() > rest_factor * thickness_ * (1 + 1e-9))
+      closest = std::min(closest, (x.segment<3>(3 * b) - x.segment<3>(3 * a)).norm());
+  return closest;
+}
+
+}  // namespace cloth

@@ -1,0 +1,73 @@
+// Self-collision in a run (Chapter 11): each step, the spatial hash finds the particles closer than the cloth's
+// thickness, the pairs that were not already that close at rest are parted by the momentum-conserving response,
+// and a clamp on each particle's displacement per step stops two particles from passing through each other.
+#pragma once
+
+#include "contact/spatial_hash.hpp"
+
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+namespace cloth {
+
+/// What self-collision did in one call, and the wall time it took (the chapter weighs it against the forces).
+struct SelfCollisionWork {
+  long long pairs_found = 0;      ///< close pairs the hash returned, over all passes
+  long long pairs_corrected = 0;  ///< of them, pairs the response moved
+  long long clamped = 0;          ///< particles whose displacement the clamp shortened
+  long long builds = 0;           ///< hash builds and queries (one per step)
+  long long passes = 0;           ///< response passes over the candidates
+  double seconds = 0;             ///< hash builds, queries and responses
+};
+
+/// The particles of one cloth, their rest positions (3 per particle, the flat sheet the scene starts from) and the
+/// thickness delta. A pair is a self-contact when it is closer than delta now and was farther than 2 delta apart
+/// at rest: nearer pairs are grid neighbours (at spacing delta, the ends of a spring), held apart by their springs.
+class SelfCollision {
+ public:
+  SelfCollision(Eigen::VectorXd rest_positions, double thickness);
+
+  /// Shortens the displacement x1 - x0 of each particle to at most delta / 2, and its velocity v1 to at most
+  /// delta / (2 h), keeping their directions. Two particles then move at most delta relative to each other in a
+  /// step, so neither can jump over the other's centre without ending the step inside its delta-ball, where
+  /// the hash sees it. Returns the particles clamped.
+  int clamp(const Eigen::Ref<const Eigen::VectorXd>& x0, double h, Eigen::Ref<Eigen::VectorXd> x1,
+            Eigen::Ref<Eigen::VectorXd> v1) const;
+
+  /// Builds the hash on x and keeps the candidate pairs of this step: closer than 1.5 delta, and farther than
+  /// 2 delta apart at rest. Particles move little while their contacts are resolved, so the passes that follow read
+  /// this list rather than query the hash again.
+  void find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x);
+
+  /// One pass over the candidates: the pairs closer than delta (1 - 1e-3) parted to delta (resolve_self_contacts).
+  /// Returns the pairs corrected; a caller repeats it until none is (a correction may bring another pair too
+  /// close), and the passes end once every pair is within a thousandth of the thickness.
+  int resolve(Eigen::VectorXd& x, Eigen::VectorXd& v);
+
+  /// The candidates of the last find_candidates.
+  [[nodiscard]] const std::vector<std::pair<int, int>>& candidates() const { return pairs_; }
+  /// The candidates of x by brute force: the check of the hash in a run.
+  [[nodiscard]] std::vector<std::pair<int, int>> candidates_brute_force(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  /// The smallest distance between particles farther apart than `rest_factor` delta at rest (the chapter's check:
+  /// rest_factor = 2; pairs exactly that far apart at rest, up to rounding, are not), found by the hash; delta when
+  /// no such pair is closer than delta.
+  [[nodiscard]] double closest_distance(const Eigen::Ref<const Eigen::VectorXd>& x, double rest_factor);
+
+  [[nodiscard]] double thickness() const { return thickness_; }
+  [[nodiscard]] const SelfCollisionWork& work() const { return work_; }
+  void add_seconds(double s) { work_.seconds += s; }
+  void count_clamped(int n) { work_.clamped += n; }
+
+ private:
+  [[nodiscard]] bool apart_at_rest(int a, int b) const;
+
+  Eigen::VectorXd rest_;
+  double thickness_;
+  SpatialHash hash_;
+  std::vector<std::pair<int, int>> pairs_;  // reused: a step allocates nothing once it has seen its most pairs
+  SelfCollisionWork work_;
+};
+
+}  // namespace cloth

@@ -1,0 +1,150 @@
+// Self-collision in a run (Chapter 11) against its own definition: in a strip folding onto itself on the ground,
+// no two particles farther than twice the thickness apart at rest come closer than the thickness (less 1 %) after
+// any accepted step, and the hash in the run finds exactly the self-contacts a brute-force search finds. Also the
+// draped sheet's rest: dropped onto a sphere, its kinetic energy falls below 1e-6 of its peak.
+#include "contact/obstacles.hpp"
+#include "contact/self_collision.hpp"
+#include "integrators/contact_implicit_euler.hpp"
+#include "integrators/contact_stepper.hpp"
+#include "integrators/method_registry.hpp"
+#include "model/fabric.hpp"
+
+#include <doctest/doctest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+using namespace cloth;
+
+namespace {
+
+constexpr double thickness = 0.01;
+
+// Chapter 11's strip at 10 x 40 particles: 1 cm spacing, 0.2 kg/m^2, K = 20 N/m, D = 0.002 N s/m, standing on the
+// ground 2 degrees off the vertical, from rest.
+SceneParams standing_strip() {
+  SceneParams p;
+  p.grid = Grid{10, 40, 0.01};
+  p.mass = particle_mass(0.2, p.grid.d);
+  p.stiffness = 20;
+  p.damping = 0.002;
+  p.pins = PinSet::none;
+  p.initial_velocity_z = 0;
+  p.orientation = Eigen::AngleAxisd(88 * std::numbers::pi / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  p.origin = Eigen::Vector3d(0, 0, thickness);
+  return p;
+}
+
+ContactModel ground_and_self() {
+  ContactModel model;
+  model.obstacles.emplace_back(HalfSpace{});
+  model.thickness = thickness;
+  model.friction = {0.3, 0.2};
+  model.self_collision = true;
+  return model;
+}
+
+}  // namespace
+
+TEST_CASE("a folding strip: no two layers closer than the thickness after any step, and the hash misses no pair") {
+  const Scene scene(standing_strip());
+  ForceField field(scene);
+  const ContactModel model = ground_and_self();
+  for (const char* method : {"symplectic_euler", "xpbd"}) {
+    CAPTURE(method);
+    ContactStepper stepper(make_stepper(method, field), model);
+    SelfCollision check(scene.initial_positions(), thickness);
+    Vector x = scene.initial_positions(), v = scene.initial_velocities();
+    const double h = 5e-4;
+    double closest = thickness, lowest_top = x[x.size() - 1];
+    int contacts = 0;
+    for (int k = 0; k < 1600; ++k) {  // 0.8 s: the top falls 0.4 m and the strip lies folded on the ground
+      REQUIRE(stepper.step(h, x, v));
+      closest = std::min(closest, check.closest_distance(x, 2));
+      if (k % 100 == 99) {  // the hash's candidates against every pair, on the states of a fold
+        check.find_candidates(x);
+        std::vector<std::pair<int, int>> found = check.candidates(), truth = check.candidates_brute_force(x);
+        std::sort(found.begin(), found.end());
+        std::sort(truth.begin(), truth.end());
+        CHECK(found == truth);
+        contacts += static_cast<int>(truth.size());
+      }
+      lowest_top = std::min(lowest_top, x[x.size() - 1]);
+    }
+    CHECK(closest >= 0.99 * thickness);
+    CHECK(deepest_penetration(model, x) <= 0.01 * thickness);
+    CHECK(lowest_top < 0.1);  // the strip did fall and fold: its top came down from 0.39 m
+    CHECK(stepper.self_collision()->work().pairs_corrected > 100);  // and its layers met
+    CHECK(contacts > 50);  // the comparison saw pairs
+  }
+}
+
+namespace {
+
+// Chapter 11's drape at 10 x 10: 5 cm spacing, 0.2 kg/m^2, K = 50 N/m, D = 0.1 N s/m (zeta = 0.45), dropped flat
+// from 10 cm above a sphere of radius 0.15 m resting on the ground under its centre.
+struct Drape {
+  SceneParams params;
+  ContactModel model;
+};
+
+Drape small_drape() {
+  Drape d;
+  SceneParams& p = d.params;
+  p.grid = Grid{10, 10, 0.05};
+  p.mass = particle_mass(0.2, p.grid.d);
+  p.stiffness = 50;
+  p.damping = 0.1;
+  p.pins = PinSet::none;
+  p.initial_velocity_z = 0;
+  const double r = 0.15, c = 4.5 * p.grid.d;
+  p.origin = Eigen::Vector3d(0, 0, 2 * r + 0.1);
+  d.model.obstacles.emplace_back(HalfSpace{});
+  d.model.obstacles.emplace_back(Sphere{Eigen::Vector3d(c, c, r), r});
+  d.model.thickness = 0.005;
+  d.model.friction = {0.3, 0.2};
+  return d;
+}
+
+// The largest kinetic energy over the run and the last, with the deepest penetration after any step.
+struct DrapeRun {
+  double peak = 0, last = 0, deepest = -1;
+};
+
+DrapeRun run_drape(Stepper& stepper, const Drape& drape, const Scene& scene, double h, double T) {
+  Vector x = scene.initial_positions(), v = scene.initial_velocities();
+  DrapeRun run;
+  const auto steps = static_cast<int>(std::lround(T / h));
+  for (int k = 0; k < steps; ++k) {
+    REQUIRE(stepper.step(h, x, v));
+    run.last = 0.5 * scene.params().mass * v.squaredNorm();
+    run.peak = std::max(run.peak, run.last);
+    run.deepest = std::max(run.deepest, deepest_penetration(drape.model, x));
+  }
+  return run;
+}
+
+}  // namespace
+
+TEST_CASE("the draped sheet comes to rest on the sphere: kinetic energy below 1e-6 of its peak, nothing inside") {
+  const Drape drape = small_drape();
+  const Scene scene(drape.params);
+  ForceField field(scene);
+  SUBCASE("symplectic Euler, corrected after each step, h = 0.5 ms") {
+    ContactStepper stepper(make_stepper("symplectic_euler", field), drape.model);
+    const DrapeRun run = run_drape(stepper, drape, scene, 5e-4, 4.0);
+    CHECK(run.peak > 0.01);  // the motion: the sheet fell 10 cm and more (its weight is 0.049 N)
+    CHECK(run.last < 1e-6 * run.peak);
+    CHECK(run.deepest <= 0.01 * drape.model.thickness);
+  }
+  SUBCASE("implicit Euler, filtered CG, Newton iterated to convergence, h = 10 ms") {
+    ContactImplicitEuler stepper(field, drape.model, FilteredNewton{50, 1e-6});
+    const DrapeRun run = run_drape(stepper, drape, scene, 1e-2, 3.0);
+    CHECK(stepper.counters().newton_iterations > stepper.counters().steps);  // it did iterate
+    CHECK(run.peak > 0.01);
+    CHECK(run.last < 1e-6 * run.peak);
+    CHECK(run.deepest <= 0.01 * drape.model.thickness);
+  }
+}
