@@ -2,11 +2,11 @@
 #include "benchmarks.hpp"
 
 #include "hand_rk4.hpp"
-#include "timing.hpp"
 
 #include "integrators/implicit_euler.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
+#include "program/timing.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
@@ -47,14 +47,15 @@ std::vector<std::pair<Vector, Vector>> folded_trajectory(const Scene& scene) {
   return states;
 }
 
-Benchmark make(std::string name, Seconds s, double count = 0, std::string unit = "") {
-  return {std::move(name), 1e6 * s.wall, 1e6 * s.cpu, count, std::move(unit)};
+Benchmark make(std::string name, const Timing& t, double count = 0, std::string unit = "") {
+  return {std::move(name), 1e6 * t.median_wall, 1e6 * t.median_cpu, 1e6 * t.fastest_cpu, 1e6 * t.slowest_cpu, count,
+          std::move(unit)};
 }
 
 template <class Solver>
 Benchmark factorization(const char* name, Solver& solver, const SparseMatrix& A, int runs) {
   solver.analyzePattern(A);  // the ordering and the symbolic factorization: once per scene, not timed
-  return make(name, median_seconds([&] { solver.factorize(A); }, runs, 2));
+  return make(name, time_runs([&] { solver.factorize(A); }, {runs, 2}));
 }
 
 }  // namespace
@@ -70,15 +71,15 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
   Vector f(n);
   const auto springs = static_cast<double>(scene.springs().size());
 
-  out.push_back(make("force_evaluation", median_seconds([&] { field.forces(x, v, f); }, runs, 10, 200), springs,
+  out.push_back(make("force_evaluation", time_runs([&] { field.forces(x, v, f); }, {runs, 10, 200}), springs,
                      "springs"));
   SparseMatrix A = field.pattern();
   const auto nnz = static_cast<double>(A.nonZeros());
   out.push_back(make("newton_matrix_refill_symmetric",
-                     median_seconds([&] { field.newton_matrix(x, v, h, StiffnessTreatment::symmetric, A); }, runs, 5, 20),
+                     time_runs([&] { field.newton_matrix(x, v, h, StiffnessTreatment::symmetric, A); }, {runs, 5, 20}),
                      nnz, "nonzeros"));
   out.push_back(make("newton_matrix_refill_definite",
-                     median_seconds([&] { field.newton_matrix(x, v, h, StiffnessTreatment::definite, A); }, runs, 5, 20),
+                     time_runs([&] { field.newton_matrix(x, v, h, StiffnessTreatment::definite, A); }, {runs, 5, 20}),
                      nnz, "nonzeros"));
 
   // Numeric factorizations of the definite matrix (positive definite, so LL^T works as well as LDL^T). First the
@@ -87,7 +88,7 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
   for (const auto symmetry : {BlockLDU::Symmetry::symmetric, BlockLDU::Symmetry::general}) {
     BlockLDU block;
     block.analyze(A, symmetry);
-    const Seconds t = median_seconds([&] { block.factorize(A); }, runs, 2, 5);
+    const Timing t = time_runs([&] { block.factorize(A); }, {runs, 2, 5});
     const bool symmetric = symmetry == BlockLDU::Symmetry::symmetric;
     out.push_back(make(symmetric ? "factorize_block_ldlt_amd" : "factorize_block_ldu_amd", t,
                        block.factorization_flops(), "multiply_adds"));
@@ -150,28 +151,26 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
     system(states[0].first, states[0].second);
     dv_prev = cg.solve(r);
     system(states[1].first, states[1].second);
-    const Seconds cold = median_seconds([&] { dv = cg.solve(r); }, runs, 2, 5);
+    const Timing cold = time_runs([&] { dv = cg.solve(r); }, {runs, 2, 5});
     const auto cold_it = static_cast<double>(cg.iterations());
-    const Seconds warm = median_seconds([&] { dv = cg.solveWithGuess(r, dv_prev); }, runs, 2, 5);
+    const Timing warm = time_runs([&] { dv = cg.solveWithGuess(r, dv_prev); }, {runs, 2, 5});
     const auto warm_it = static_cast<double>(cg.iterations());
     out.push_back(make("cg_eigen_jacobi_cold_1e-8", cold, cold_it, "iterations"));
     out.push_back(make("cg_eigen_jacobi_warm_1e-8", warm, warm_it, "iterations"));
     // The same two solves with the core's allocation-free block-Jacobi PCG (integrators/pcg.hpp).
     BlockJacobiPCG pcg(n);
-    const Seconds precondition = median_seconds([&] { pcg.compute(A); }, runs, 2, 20);
-    const Seconds pcg_cold = median_seconds(
+    const Timing precondition = time_runs([&] { pcg.compute(A); }, {runs, 2, 20});
+    const Timing pcg_cold = time_runs(
         [&] {
           dv.setZero();
           pcg.solve(A, r, dv, 1e-8, 1000);
-        },
-        runs, 2, 5);
+        }, {runs, 2, 5});
     const auto pcg_cold_it = static_cast<double>(pcg.iterations());
-    const Seconds pcg_warm = median_seconds(
+    const Timing pcg_warm = time_runs(
         [&] {
           dv = dv_prev;
           pcg.solve(A, r, dv, 1e-8, 1000);
-        },
-        runs, 2, 5);
+        }, {runs, 2, 5});
     const auto pcg_warm_it = static_cast<double>(pcg.iterations());
     out.push_back(make("pcg_block_jacobi_setup", precondition));
     out.push_back(make("pcg_block_jacobi_cold_1e-8", pcg_cold, pcg_cold_it, "iterations"));
@@ -200,7 +199,7 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
     };
     for (std::size_t k = 0; k < states.size(); ++k) next();
     ie.reset_counters();
-    const Seconds t = median_seconds(next, runs, 0, static_cast<int>(states.size()) - 1);
+    const Timing t = time_runs(next, {runs, 0, static_cast<int>(states.size()) - 1});
     out.push_back(make(name, t,
                        static_cast<double>(ie.counters().cg_iterations) / static_cast<double>(ie.counters().steps),
                        "cg_iterations_per_solve"));
@@ -220,20 +219,19 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
     HandExplicitEuler hand_euler(field);
     Vector xs = x, vs = v;
     const auto time_step = [&](Stepper& s) {
-      return median_seconds(
+      return time_runs(
           [&] {
             xs = x;
             vs = v;
             s.step(1e-4, xs, vs);
-          },
-          runs, 5, 50);
+          }, {runs, 5, 50});
     };
     // Interleaved, twice each, so that a slow spell of the machine favours neither; the faster of the two kept.
-    const Seconds g1 = time_step(*generic), h1 = time_step(hand), g2 = time_step(*generic), h2 = time_step(hand);
-    const auto faster = [](Seconds a, Seconds b) { return a.cpu < b.cpu ? a : b; };
+    const Timing g1 = time_step(*generic), h1 = time_step(hand), g2 = time_step(*generic), h2 = time_step(hand);
+    const auto faster = [](const Timing& a, const Timing& b) { return a.median_cpu < b.median_cpu ? a : b; };
     out.push_back(make("rk4_step_tableau", faster(g1, g2), 4, "rhs_evaluations"));
     out.push_back(make("rk4_step_hand_unrolled", faster(h1, h2), 4, "rhs_evaluations"));
-    const Seconds e1 = time_step(*euler), u1 = time_step(hand_euler), e2 = time_step(*euler),
+    const Timing e1 = time_step(*euler), u1 = time_step(hand_euler), e2 = time_step(*euler),
                   u2 = time_step(hand_euler);
     out.push_back(make("explicit_euler_step", faster(e1, e2), 1, "rhs_evaluations"));
     out.push_back(make("explicit_euler_step_hand_written", faster(u1, u2), 1, "rhs_evaluations"));

@@ -6,7 +6,6 @@
 // `--program plain` runs only the reader's program (what part 1 times). Writes odeint_comparison.md (a table for
 // the book) and odeint_comparison.txt to --out.
 #include "plain_odeint_cloth.hpp"
-#include "timing.hpp"
 
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
@@ -14,6 +13,7 @@
 #include "program/command_line.hpp"
 #include "program/fragment.hpp"
 #include "program/output.hpp"
+#include "program/timing.hpp"
 
 #include <boost/numeric/odeint.hpp>
 #include <fcntl.h>
@@ -22,7 +22,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -32,6 +31,11 @@ extern char** environ;
 using namespace cloth;
 
 namespace {
+
+// Seconds of one run: wall, and processor time (the thread's in this process, user + system for a child).
+struct Seconds {
+  double wall = 0, cpu = 0;
+};
 
 ch06::PlainOdeintCloth plain_cloth(const SceneParams& s) {
   return {s.grid.M, s.grid.N, s.grid.d, s.stiffness, s.damping, s.mass, s.gravity, s.initial_velocity_z};
@@ -72,14 +76,14 @@ double lowest_z(const Vector& x) {
 }
 
 // Runs a program to its end; returns its wall and CPU (user + system) seconds. Throws when it fails.
-ch06::Seconds time_process(const std::vector<std::string>& args) {
+Seconds time_process(const std::vector<std::string>& args) {
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  const auto start = std::chrono::steady_clock::now();
+  const double start = wall_seconds();
   pid_t pid = 0;
   const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
@@ -87,7 +91,7 @@ ch06::Seconds time_process(const std::vector<std::string>& args) {
   int status = 0;
   rusage usage{};
   wait4(pid, &status, 0, &usage);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall = wall_seconds() - start;
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw InputError(args[0] + " did not finish with status 0");
   const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
   return {wall, seconds(usage.ru_utime) + seconds(usage.ru_stime)};
@@ -97,27 +101,25 @@ ch06::Seconds time_process(const std::vector<std::string>& args) {
 // The fastest of `runs` timings, and the slowest CPU time among them: the spread says how far one timing on a
 // shared computer can be from the best.
 struct Timings {
-  ch06::Seconds best{INFINITY, INFINITY};
+  Seconds best{INFINITY, INFINITY};
   double slowest_cpu = 0;
-  void add(const ch06::Seconds& s) {
+  void add(const Seconds& s) {
     best.wall = std::min(best.wall, s.wall);
     best.cpu = std::min(best.cpu, s.cpu);
     slowest_cpu = std::max(slowest_cpu, s.cpu);
   }
 };
 
-Timings best_of(int runs, const std::function<ch06::Seconds()>& once) {
+Timings best_of(int runs, const std::function<Seconds()>& once) {
   Timings t;
   for (int k = 0; k < runs; ++k) t.add(once());
   return t;
 }
 
-ch06::Seconds time_in_process(const std::function<void()>& body) {
-  const auto start = std::chrono::steady_clock::now();
-  const double cpu = ch06::thread_cpu_seconds();
-  body();
-  return {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-          ch06::thread_cpu_seconds() - cpu};
+// One run in this process (program/timing.hpp: the thread's processor time beside the wall clock).
+Seconds time_in_process(const std::function<void()>& body) {
+  const Timing t = time_runs(body, {1});
+  return {t.fastest_wall, t.fastest_cpu};
 }
 
 }  // namespace
@@ -172,7 +174,7 @@ int main(int argc, char** argv) {
       plain_timings.add(time_process(plain_args));
       ch03_timings.add(time_process(ch03_args));
     }
-    const ch06::Seconds plain_process = plain_timings.best, ch03_process = ch03_timings.best;
+    const Seconds plain_process = plain_timings.best, ch03_process = ch03_timings.best;
 
     // 2. The integrators alone on the core's forces, and the reader's program in this process for reference.
     const Scene scene(s);
@@ -185,8 +187,8 @@ int main(int argc, char** argv) {
       odeint_timings.add(time_in_process([&] { x_odeint = odeint_on_core_forces(field, h, T); }));
       engine_timings.add(time_in_process([&] { x_core = core_engine(field, h, T); }));
     }
-    const ch06::Seconds odeint_core = odeint_timings.best, engine = engine_timings.best;
-    const ch06::Seconds plain_in_process =
+    const Seconds odeint_core = odeint_timings.best, engine = engine_timings.best;
+    const Seconds plain_in_process =
         best_of(runs, [&] { return time_in_process([&] { y_plain = plain.run(h, T); }); }).best;
 
     // Seconds of wall and CPU time, and the CPU time as a ratio to the first row of each table.
@@ -208,13 +210,12 @@ int main(int argc, char** argv) {
     //    same scene, as a whole process (start-up, the scene, the fastest rates for run.txt, every output).
     const std::filesystem::path bin = std::filesystem::path(ch03).parent_path();
     MarkdownTable one_step({"one step of h = 0.01 s, whole process", "wall [ms]", "CPU [ms]"}, "lrr");
-    for (const char* program : {"ch02_explicit_euler", "ch03_runge_kutta", "ch04_implicit_euler", "ch08_adaptive_step",
-                                "ch09_implicit_runge_kutta"}) {
+    // The programs of the chapters before this one: a later chapter's program is timed on its own page.
+    for (const char* program : {"ch02_explicit_euler", "ch03_runge_kutta", "ch04_implicit_euler"}) {
       std::vector<std::string> args = {(bin / program).string()};
       args.insert(args.end(), scene_args.begin(), scene_args.end() - 4);  // the scene, without --dt and --t-end
-      if (std::string(program) != "ch08_adaptive_step") args.insert(args.end(), {"--dt", "0.01"});  // ch08 adapts
-      args.insert(args.end(), {"--t-end", "0.01", "--out", dir + "/one_step_" + program});
-      const ch06::Seconds t = best_of(std::max(runs, 5), [&] { return time_process(args); }).best;
+      args.insert(args.end(), {"--dt", "0.01", "--t-end", "0.01", "--out", dir + "/one_step_" + program});
+      const Seconds t = best_of(std::max(runs, 5), [&] { return time_process(args); }).best;
       one_step.add_row({std::string("`") + program + "`", format_fixed(1e3 * t.wall, 1), format_fixed(1e3 * t.cpu, 1)});
     }
     const std::string table = "RK4, h = " + H + " s over T = " + TT + " s on the " + M + " x " + N +
