@@ -3,9 +3,12 @@
 // several timed runs after a warm-up (program/timing.hpp).
 #pragma once
 
+#include "model/force_field.hpp"
 #include "model/scene.hpp"
+#include "program/timing.hpp"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ch06 {
@@ -21,6 +24,15 @@ struct Benchmark {
   double count = 0;
   std::string count_name;
 };
+
+/// A benchmark from its timing: the median wall and CPU times, with the fastest and slowest CPU run, in microseconds.
+inline Benchmark timed_benchmark(std::string name, const cloth::Timing& t, double count = 0, std::string unit = "") {
+  return {std::move(name), 1e6 * t.median_wall, 1e6 * t.median_cpu, 1e6 * t.fastest_cpu, 1e6 * t.slowest_cpu, count,
+          std::move(unit)};
+}
+
+/// Every numeric factorization of the definite Newton matrix A, side by side (factorizations.cpp).
+void time_factorizations(const cloth::SparseMatrix& A, int runs, std::vector<Benchmark>& out);
 
 /// Runs every micro-benchmark on `params` (the report scene at 20 x 20 by default), on the cloth's states from
 /// t = 0.5 s on, where it is folded. `runs` timed runs per quantity.
