@@ -30,6 +30,8 @@ using ch06::Timings;
 
 namespace {
 
+// The files the program writes into --out, in one list.
+const std::vector<std::string> outputs = {"odeint_comparison.md", "odeint_comparison.txt"};
 
 ch06::PlainOdeintCloth plain_cloth(const SceneParams& s) {
   return {s.grid.M, s.grid.N, s.grid.d, s.stiffness, s.damping, s.mass, s.gravity, s.initial_velocity_z};
@@ -160,7 +162,7 @@ int main(int argc, char** argv) {
       std::printf("lowest z at T = %g s: %.9g m\n", T, cloth.lowest_z(cloth.run(h, T)));
       return 0;
     }
-    prepare_outputs(opt.run.out_dir, {"odeint_comparison.md", "odeint_comparison.txt"});
+    prepare_outputs(opt.run.out_dir, outputs);
     const std::string dir = opt.run.out_dir;
     const std::vector<std::string> scene_args = scene_arguments(s, h, T);
 
