@@ -159,10 +159,6 @@ void record(const Sink& sink, std::FILE* f, const WorkPoint& p) {
 
 }  // namespace
 
-// [work_precision]
-// Each method runs down its ladder (smaller steps, or tighter tolerances) until it is accurate to 1e-9 m, its
-// error reaches the reference's own uncertainty, or a run costs more than plan.max_seconds. The first run of a
-// rung measures the error and warms the caches; the timed runs repeat it whole.
 std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, const Trajectory& ref,
                                       double ref_agreement, const SweepPlan& plan, const Sink& sink) {
   const Scene scene(with_K_and_D(base, c.K, c.D));
@@ -178,6 +174,10 @@ std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, 
     };
     std::fprintf(f, "# %s\n", method.c_str());
     const int first = adaptive ? plan.tolerance_min : plan.k_min, last = adaptive ? plan.tolerance_max : plan.k_max;
+    // [work_precision]
+    // Each method runs down its ladder (smaller steps, or tighter tolerances) until it is accurate to 1e-9 m, its
+    // error reaches the reference's own uncertainty, or a run costs more than plan.max_seconds. The first run of
+    // a rung measures the error and warms the caches; the timed runs repeat it whole.
     for (int rung = first; rung <= last; ++rung) {
       const double cpu_start = thread_cpu_seconds(), wall_start = wall_seconds();
       const Rung r = run_rung(rung);
@@ -202,11 +202,11 @@ std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, 
       record(sink, f, p);
       if (p.error < 1e-9 || cpu > plan.max_seconds) break;  // accurate enough, or expensive enough
     }
+    // [work_precision]
     std::fprintf(f, "\n\n");
   }
   file->commit();
   return points;
 }
-// [work_precision]
 
 }  // namespace ch06
