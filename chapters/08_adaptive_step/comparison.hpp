@@ -67,7 +67,9 @@ std::vector<Row> odeint_runs(const cloth::Scene& scene, const LongState& ref, co
 /// error checker takes the largest component), at the same tolerances.
 bool in_fair_project_set(const Row& r);
 
-/// work_precision.dat, levels.dat, reference.md, spring_turn.md, evaluation_cost.md, levels.md and tries.md
+/// reference.md: the reference's credential, written as soon as it is known (comparison_fragments.cpp).
+void write_reference(const std::string& dir, const Reference& ref, double T, const std::string& command);
+/// work_precision.dat, levels.dat, spring_turn.md, evaluation_cost.md, levels.md and tries.md
 /// (comparison_fragments.cpp).
 void write_comparison(const std::string& dir, const std::vector<Row>& rows, const Reference& reference,
                       const ComparisonPlan& plan, const cloth::SceneParams& scene, const std::string& command);

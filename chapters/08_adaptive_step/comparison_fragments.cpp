@@ -162,16 +162,19 @@ void write_tries(const std::string& dir, const std::vector<Row>& rows, const Com
 
 }  // namespace
 
-void write_comparison(const std::string& dir, const std::vector<Row>& rows, const Reference& ref,
-                      const ComparisonPlan& plan, const SceneParams& scene, const std::string& command) {
-  const double floor = 100 * ref.agreement;  // errors below this are not measurements
+void write_reference(const std::string& dir, const Reference& ref, double T, const std::string& command) {
   write_text_fragment(dir + "reference.md",
                       "The reference of this run is odeint's Dormand-Prince in `long double` at rtol = atol = " +
                           format_number(ref.tolerance) + " (" + std::to_string(ref.steps) +
                           " steps); the same computation with Cash-Karp (" + std::to_string(ref.check_steps) +
                           " steps) lands " + format_number(ref.agreement, 2) + " m from it at T = " +
-                          format_number(plan.run.t_end) + " s, so errors below " + format_number(floor, 2) +
+                          format_number(T) + " s, so errors below " + format_number(100 * ref.agreement, 2) +
                           " m are not plotted (`" + command + "`).\n");
+}
+
+void write_comparison(const std::string& dir, const std::vector<Row>& rows, const Reference& ref,
+                      const ComparisonPlan& plan, const SceneParams& scene, const std::string& command) {
+  const double floor = 100 * ref.agreement;  // errors below this are not measurements
   write_table(dir, rows, ref, plan.run.t_end, scene);
   write_spring_turn(dir, rows, plan, floor, command);
   write_evaluation_cost(dir, rows, command);

@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
     std::printf("reference: long double, odeint dopri5 and cash_karp54 at tol %g (%lld and %lld steps, %.1f s): "
                 "they agree to %.2e m at T = %g s\n", ref.tolerance, ref.steps, ref.check_steps,
                 wall_seconds() - start, ref.agreement, plan.run.t_end);
+    ch08::write_reference(opt.run.out_dir + "/", ref, plan.run.t_end, command);
 
     // 2. Both sides at the same tolerances, each run timed whole.
     std::vector<ch08::Row> rows = ch08::project_runs(scene, ref.y, plan);
