@@ -2,18 +2,13 @@
 #include "benchmarks.hpp"
 
 #include "hand_rk4.hpp"
-#include "timing.hpp"
 
 #include "integrators/implicit_euler.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
+#include "program/timing.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
-#ifdef CLOTH_HAVE_CHOLMOD
-#include <Eigen/CholmodSupport>
-#endif
 
 namespace ch06 {
 
@@ -47,137 +42,70 @@ std::vector<std::pair<Vector, Vector>> folded_trajectory(const Scene& scene) {
   return states;
 }
 
-Benchmark make(std::string name, Seconds s, double count = 0, std::string unit = "") {
-  return {std::move(name), 1e6 * s.wall, 1e6 * s.cpu, count, std::move(unit)};
+using States = std::vector<std::pair<Vector, Vector>>;
+
+// One force evaluation and the two refills of the Newton matrix at the first folded state; A ends holding the
+// definite matrix the factorizations below take.
+void time_forces_and_refills(ForceField& field, const Vector& x, const Vector& v, SparseMatrix& A, int runs,
+                             std::vector<Benchmark>& out) {
+  Vector f(field.dof_count());
+  const auto springs = static_cast<double>(field.scene().springs().size());
+  out.push_back(timed_benchmark("force_evaluation", time_runs([&] { field.forces(x, v, f); }, {runs, 10, 200}), springs,
+                     "springs"));
+  const auto nnz = static_cast<double>(A.nonZeros());
+  out.push_back(timed_benchmark("newton_matrix_refill_symmetric",
+                     time_runs([&] { field.newton_matrix(x, v, h, StiffnessTreatment::symmetric, A); }, {runs, 5, 20}),
+                     nnz, "nonzeros"));
+  out.push_back(timed_benchmark("newton_matrix_refill_definite",
+                     time_runs([&] { field.newton_matrix(x, v, h, StiffnessTreatment::definite, A); }, {runs, 5, 20}),
+                     nnz, "nonzeros"));
 }
 
-template <class Solver>
-Benchmark factorization(const char* name, Solver& solver, const SparseMatrix& A, int runs) {
-  solver.analyzePattern(A);  // the ordering and the symbolic factorization: once per scene, not timed
-  return make(name, median_seconds([&] { solver.factorize(A); }, runs, 2));
+void time_conjugate_gradients(ForceField& field, const States& states, SparseMatrix& A, int runs,
+                              std::vector<Benchmark>& out) {
+  const int n = field.dof_count();
+  // Eigen's CG on the first Newton system of a step, cold (from 0) and warm (from the previous step's update).
+  Vector fx(n), r(n), dv_prev(n), dv(n);
+  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
+  cg.setTolerance(1e-8);
+  const auto system = [&](const Vector& xs, const Vector& vs) {
+    field.newton_matrix(xs + h * vs, vs, h, StiffnessTreatment::definite, A);
+    field.forces(xs + h * vs, vs, fx);
+    r = h * fx;
+    cg.compute(A);
+  };
+  system(states[0].first, states[0].second);
+  dv_prev = cg.solve(r);
+  system(states[1].first, states[1].second);
+  const Timing cold = time_runs([&] { dv = cg.solve(r); }, {runs, 2, 5});
+  const auto cold_it = static_cast<double>(cg.iterations());
+  const Timing warm = time_runs([&] { dv = cg.solveWithGuess(r, dv_prev); }, {runs, 2, 5});
+  const auto warm_it = static_cast<double>(cg.iterations());
+  out.push_back(timed_benchmark("cg_eigen_jacobi_cold_1e-8", cold, cold_it, "iterations"));
+  out.push_back(timed_benchmark("cg_eigen_jacobi_warm_1e-8", warm, warm_it, "iterations"));
+  // The same two solves with the core's allocation-free block-Jacobi PCG (integrators/pcg.hpp).
+  BlockJacobiPCG pcg(n);
+  const Timing precondition = time_runs([&] { pcg.compute(A); }, {runs, 2, 20});
+  const Timing pcg_cold = time_runs(
+      [&] {
+        dv.setZero();
+        pcg.solve(A, r, dv, 1e-8, 1000);
+      }, {runs, 2, 5});
+  const auto pcg_cold_it = static_cast<double>(pcg.iterations());
+  const Timing pcg_warm = time_runs(
+      [&] {
+        dv = dv_prev;
+        pcg.solve(A, r, dv, 1e-8, 1000);
+      }, {runs, 2, 5});
+  const auto pcg_warm_it = static_cast<double>(pcg.iterations());
+  out.push_back(timed_benchmark("pcg_block_jacobi_setup", precondition));
+  out.push_back(timed_benchmark("pcg_block_jacobi_cold_1e-8", pcg_cold, pcg_cold_it, "iterations"));
+  out.push_back(timed_benchmark("pcg_block_jacobi_warm_1e-8", pcg_warm, pcg_warm_it, "iterations"));
 }
 
-}  // namespace
-
-std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
-  std::vector<Benchmark> out;
-  const Scene scene(params);
-  ForceField field(scene);
-  const auto states = folded_trajectory(scene);
+void time_newton_iterations(const Scene& scene, const States& states, int runs, std::vector<Benchmark>& out) {
   const Vector& x = states[0].first;
   const Vector& v = states[0].second;
-  const int n = field.dof_count();
-  Vector f(n);
-  const auto springs = static_cast<double>(scene.springs().size());
-
-  out.push_back(make("force_evaluation", median_seconds([&] { field.forces(x, v, f); }, runs, 10, 200), springs,
-                     "springs"));
-  SparseMatrix A = field.pattern();
-  const auto nnz = static_cast<double>(A.nonZeros());
-  out.push_back(make("newton_matrix_refill_symmetric",
-                     median_seconds([&] { field.newton_matrix(x, v, h, StiffnessTreatment::symmetric, A); }, runs, 5, 20),
-                     nnz, "nonzeros"));
-  out.push_back(make("newton_matrix_refill_definite",
-                     median_seconds([&] { field.newton_matrix(x, v, h, StiffnessTreatment::definite, A); }, runs, 5, 20),
-                     nnz, "nonzeros"));
-
-  // Numeric factorizations of the definite matrix (positive definite, so LL^T works as well as LDL^T). First the
-  // core's block factorization (integrators/block_ldu.hpp), symmetric and general, then what Eigen and CHOLMOD
-  // offer on the same matrix.
-  for (const auto symmetry : {BlockLDU::Symmetry::symmetric, BlockLDU::Symmetry::general}) {
-    BlockLDU block;
-    block.analyze(A, symmetry);
-    const Seconds t = median_seconds([&] { block.factorize(A); }, runs, 2, 5);
-    const bool symmetric = symmetry == BlockLDU::Symmetry::symmetric;
-    out.push_back(make(symmetric ? "factorize_block_ldlt_amd" : "factorize_block_ldu_amd", t,
-                       block.factorization_flops(), "multiply_adds"));
-  }
-  {
-    Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> s;
-    out.push_back(factorization("factorize_eigen_sparselu_colamd", s, A, runs));
-  }
-  {
-    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> s;
-    out.push_back(factorization("factorize_eigen_ldlt_amd", s, A, runs));
-  }
-  {
-    Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> s;
-    out.push_back(factorization("factorize_eigen_llt_amd", s, A, runs));
-  }
-  {
-    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> s;
-    out.push_back(factorization("factorize_eigen_ldlt_natural", s, A, runs));
-  }
-#ifdef CLOTH_HAVE_CHOLMOD
-  // CHOLMOD with one ordering each (its default tries several and keeps the least fill).
-  const auto cholmod = [&](auto& s, const char* name, int ordering) {
-    s.cholmod().nmethods = 1;
-    s.cholmod().method[0].ordering = ordering;
-    Benchmark b = factorization(name, s, A, runs);
-    b.count = s.cholmod().lnz;
-    b.count_name = "factor_nonzeros";
-    out.push_back(b);
-  };
-  {
-    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> s;
-    cholmod(s, "factorize_cholmod_supernodal_amd", CHOLMOD_AMD);
-  }
-  {
-    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> s;
-    cholmod(s, "factorize_cholmod_supernodal_metis", CHOLMOD_METIS);
-  }
-  {
-    Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Lower> s;
-    cholmod(s, "factorize_cholmod_simplicial_amd", CHOLMOD_AMD);
-  }
-  {
-    Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Lower> s;
-    cholmod(s, "factorize_cholmod_simplicial_metis", CHOLMOD_METIS);
-  }
-#endif
-
-  // Eigen's CG on the first Newton system of a step, cold (from 0) and warm (from the previous step's update).
-  {
-    Vector fx(n), r(n), dv_prev(n), dv(n);
-    Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
-    cg.setTolerance(1e-8);
-    const auto system = [&](const Vector& xs, const Vector& vs) {
-      field.newton_matrix(xs + h * vs, vs, h, StiffnessTreatment::definite, A);
-      field.forces(xs + h * vs, vs, fx);
-      r = h * fx;
-      cg.compute(A);
-    };
-    system(states[0].first, states[0].second);
-    dv_prev = cg.solve(r);
-    system(states[1].first, states[1].second);
-    const Seconds cold = median_seconds([&] { dv = cg.solve(r); }, runs, 2, 5);
-    const auto cold_it = static_cast<double>(cg.iterations());
-    const Seconds warm = median_seconds([&] { dv = cg.solveWithGuess(r, dv_prev); }, runs, 2, 5);
-    const auto warm_it = static_cast<double>(cg.iterations());
-    out.push_back(make("cg_eigen_jacobi_cold_1e-8", cold, cold_it, "iterations"));
-    out.push_back(make("cg_eigen_jacobi_warm_1e-8", warm, warm_it, "iterations"));
-    // The same two solves with the core's allocation-free block-Jacobi PCG (integrators/pcg.hpp).
-    BlockJacobiPCG pcg(n);
-    const Seconds precondition = median_seconds([&] { pcg.compute(A); }, runs, 2, 20);
-    const Seconds pcg_cold = median_seconds(
-        [&] {
-          dv.setZero();
-          pcg.solve(A, r, dv, 1e-8, 1000);
-        },
-        runs, 2, 5);
-    const auto pcg_cold_it = static_cast<double>(pcg.iterations());
-    const Seconds pcg_warm = median_seconds(
-        [&] {
-          dv = dv_prev;
-          pcg.solve(A, r, dv, 1e-8, 1000);
-        },
-        runs, 2, 5);
-    const auto pcg_warm_it = static_cast<double>(pcg.iterations());
-    out.push_back(make("pcg_block_jacobi_setup", precondition));
-    out.push_back(make("pcg_block_jacobi_cold_1e-8", pcg_cold, pcg_cold_it, "iterations"));
-    out.push_back(make("pcg_block_jacobi_warm_1e-8", pcg_warm, pcg_warm_it, "iterations"));
-  }
-
   // One Newton iteration of implicit Euler (force evaluation, refill, factorization or preconditioner, solve),
   // stepping through consecutive states so that CG's warm start is the one a run would see.
   const auto newton_iteration = [&](LinearSolverKind kind, const char* name,
@@ -200,8 +128,8 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
     };
     for (std::size_t k = 0; k < states.size(); ++k) next();
     ie.reset_counters();
-    const Seconds t = median_seconds(next, runs, 0, static_cast<int>(states.size()) - 1);
-    out.push_back(make(name, t,
+    const Timing t = time_runs(next, {runs, 0, static_cast<int>(states.size()) - 1});
+    out.push_back(timed_benchmark(name, t,
                        static_cast<double>(ie.counters().cg_iterations) / static_cast<double>(ie.counters().steps),
                        "cg_iterations_per_solve"));
   };
@@ -212,32 +140,49 @@ std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
   newton_iteration(LinearSolverKind::lu, "newton_iteration_sparselu_exact", StiffnessTreatment::exact);
   newton_iteration(LinearSolverKind::cg, "newton_iteration_cg_warm");
 
+}
+
+void time_runge_kutta_steps(ForceField& field, const Vector& x, const Vector& v, int runs, std::vector<Benchmark>& out) {
   // Runge-Kutta: the generic tableau engine against RK4 and explicit Euler written out by hand, on the same forces.
-  {
-    const auto generic = make_stepper("rk4", field);
-    HandRK4 hand(field);
-    const auto euler = make_stepper("explicit_euler", field);
-    HandExplicitEuler hand_euler(field);
-    Vector xs = x, vs = v;
-    const auto time_step = [&](Stepper& s) {
-      return median_seconds(
-          [&] {
-            xs = x;
-            vs = v;
-            s.step(1e-4, xs, vs);
-          },
-          runs, 5, 50);
-    };
-    // Interleaved, twice each, so that a slow spell of the machine favours neither; the faster of the two kept.
-    const Seconds g1 = time_step(*generic), h1 = time_step(hand), g2 = time_step(*generic), h2 = time_step(hand);
-    const auto faster = [](Seconds a, Seconds b) { return a.cpu < b.cpu ? a : b; };
-    out.push_back(make("rk4_step_tableau", faster(g1, g2), 4, "rhs_evaluations"));
-    out.push_back(make("rk4_step_hand_unrolled", faster(h1, h2), 4, "rhs_evaluations"));
-    const Seconds e1 = time_step(*euler), u1 = time_step(hand_euler), e2 = time_step(*euler),
-                  u2 = time_step(hand_euler);
-    out.push_back(make("explicit_euler_step", faster(e1, e2), 1, "rhs_evaluations"));
-    out.push_back(make("explicit_euler_step_hand_written", faster(u1, u2), 1, "rhs_evaluations"));
-  }
+  const auto generic = make_stepper("rk4", field);
+  HandRK4 hand(field);
+  const auto euler = make_stepper("explicit_euler", field);
+  HandExplicitEuler hand_euler(field);
+  Vector xs = x, vs = v;
+  const auto time_step = [&](Stepper& s) {
+    return time_runs(
+        [&] {
+          xs = x;
+          vs = v;
+          s.step(1e-4, xs, vs);
+        }, {runs, 5, 50});
+  };
+  // Interleaved, twice each, so that a slow spell of the machine favours neither; the faster of the two kept.
+  const Timing g1 = time_step(*generic), h1 = time_step(hand), g2 = time_step(*generic), h2 = time_step(hand);
+  const auto faster = [](const Timing& a, const Timing& b) { return a.median_cpu < b.median_cpu ? a : b; };
+  out.push_back(timed_benchmark("rk4_step_tableau", faster(g1, g2), 4, "rhs_evaluations"));
+  out.push_back(timed_benchmark("rk4_step_hand_unrolled", faster(h1, h2), 4, "rhs_evaluations"));
+  const Timing e1 = time_step(*euler), u1 = time_step(hand_euler), e2 = time_step(*euler),
+                u2 = time_step(hand_euler);
+  out.push_back(timed_benchmark("explicit_euler_step", faster(e1, e2), 1, "rhs_evaluations"));
+  out.push_back(timed_benchmark("explicit_euler_step_hand_written", faster(u1, u2), 1, "rhs_evaluations"));
+}
+
+}  // namespace
+
+std::vector<Benchmark> run_benchmarks(const SceneParams& params, int runs) {
+  std::vector<Benchmark> out;
+  const Scene scene(params);
+  ForceField field(scene);
+  const States states = folded_trajectory(scene);
+  const Vector& x = states[0].first;
+  const Vector& v = states[0].second;
+  SparseMatrix A = field.pattern();
+  time_forces_and_refills(field, x, v, A, runs, out);
+  time_factorizations(A, runs, out);  // factorizations.cpp
+  time_conjugate_gradients(field, states, A, runs, out);
+  time_newton_iterations(scene, states, runs, out);
+  time_runge_kutta_steps(field, x, v, runs, out);
   return out;
 }
 

@@ -6,7 +6,7 @@
 // `--program plain` runs only the reader's program (what part 1 times). Writes odeint_comparison.md (a table for
 // the book) and odeint_comparison.txt to --out.
 #include "plain_odeint_cloth.hpp"
-#include "timing.hpp"
+#include "process_timing.hpp"
 
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
@@ -14,24 +14,24 @@
 #include "program/command_line.hpp"
 #include "program/fragment.hpp"
 #include "program/output.hpp"
+#include "program/timing.hpp"
 
 #include <boost/numeric/odeint.hpp>
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
 
-extern char** environ;
-
 using namespace cloth;
+using ch06::best_of;
+using ch06::Seconds;
+using ch06::time_process;
+using ch06::Timings;
 
 namespace {
+
+// The files the program writes into --out, in one list.
+const std::vector<std::string> outputs = {"odeint_comparison.md", "odeint_comparison.txt"};
 
 ch06::PlainOdeintCloth plain_cloth(const SceneParams& s) {
   return {s.grid.M, s.grid.N, s.grid.d, s.stiffness, s.damping, s.mass, s.gravity, s.initial_velocity_z};
@@ -71,53 +71,62 @@ double lowest_z(const Vector& x) {
   return z;
 }
 
-// Runs a program to its end; returns its wall and CPU (user + system) seconds. Throws when it fails.
-ch06::Seconds time_process(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  const auto start = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) throw InputError("cannot run " + args[0]);
-  int status = 0;
-  rusage usage{};
-  wait4(pid, &status, 0, &usage);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw InputError(args[0] + " did not finish with status 0");
-  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-  return {wall, seconds(usage.ru_utime) + seconds(usage.ru_stime)};
+// One run in this process (program/timing.hpp: the thread's processor time beside the wall clock).
+Seconds time_in_process(const std::function<void()>& body) {
+  const Timing t = time_runs(body, {1});
+  return {t.fastest_wall, t.fastest_cpu};
 }
 
-// The fastest of `runs` (wall and CPU separately): on a shared machine the least disturbed run.
-// The fastest of `runs` timings, and the slowest CPU time among them: the spread says how far one timing on a
-// shared computer can be from the best.
-struct Timings {
-  ch06::Seconds best{INFINITY, INFINITY};
-  double slowest_cpu = 0;
-  void add(const ch06::Seconds& s) {
-    best.wall = std::min(best.wall, s.wall);
-    best.cpu = std::min(best.cpu, s.cpu);
-    slowest_cpu = std::max(slowest_cpu, s.cpu);
-  }
+// The flags that give another program this scene, step and horizon (--dt and --t-end last).
+std::vector<std::string> scene_arguments(const SceneParams& s, double h, double T) {
+  return {"--grid", std::to_string(s.grid.M) + "x" + std::to_string(s.grid.N), "--spacing", format_number(s.grid.d),
+          "--mass", format_number(s.mass), "--v0", format_number(s.initial_velocity_z), "--K",
+          format_number(s.stiffness), "--damping", format_number(s.damping), "--dt", format_number(h), "--t-end",
+          format_number(T)};
+}
+
+// The second comparison: odeint's runge_kutta4 and the core's tableau engine on the same forces, alternately, and
+// the reader's program in this process; where each ends (the lowest particle) shows that they solve one problem.
+struct Integrators {
+  Timings odeint, engine, plain;
+  double z_odeint = 0, z_engine = 0, z_plain = 0;
 };
-
-Timings best_of(int runs, const std::function<ch06::Seconds()>& once) {
-  Timings t;
-  for (int k = 0; k < runs; ++k) t.add(once());
-  return t;
+Integrators time_integrators(const SceneParams& s, double h, double T, int runs) {
+  const Scene scene(s);
+  ForceField field(scene);
+  Vector x_odeint, x_core;
+  ch06::PlainOdeintCloth::State y_plain;
+  const ch06::PlainOdeintCloth plain = plain_cloth(s);
+  Integrators out;
+  for (int k = 0; k < runs; ++k) {  // alternated, so that a busy spell of the machine hits both
+    out.odeint.add(time_in_process([&] { x_odeint = odeint_on_core_forces(field, h, T); }));
+    out.engine.add(time_in_process([&] { x_core = core_engine(field, h, T); }));
+  }
+  out.plain = best_of(runs, [&] { return time_in_process([&] { y_plain = plain.run(h, T); }); });
+  out.z_odeint = lowest_z(x_odeint), out.z_engine = lowest_z(x_core), out.z_plain = plain.lowest_z(y_plain);
+  return out;
 }
 
-ch06::Seconds time_in_process(const std::function<void()>& body) {
-  const auto start = std::chrono::steady_clock::now();
-  const double cpu = ch06::thread_cpu_seconds();
-  body();
-  return {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-          ch06::thread_cpu_seconds() - cpu};
+// What a program costs beyond its integration: one step of h = 0.01 s of each single-run program of the chapters
+// before this one on the same scene, as a whole process (start-up, the scene, the fastest rates for run.txt,
+// every output). A later chapter's program is timed on its own page.
+MarkdownTable one_step_table(const std::filesystem::path& bin, const std::vector<std::string>& scene_args,
+                             const std::string& dir, int runs) {
+  MarkdownTable one_step({"one step of h = 0.01 s, whole process", "wall [ms]", "CPU [ms]"}, "lrr");
+  for (const char* program : {"ch02_explicit_euler", "ch03_runge_kutta", "ch04_implicit_euler"}) {
+    std::vector<std::string> args = {(bin / program).string()};
+    args.insert(args.end(), scene_args.begin(), scene_args.end() - 4);  // the scene, without --dt and --t-end
+    args.insert(args.end(), {"--dt", "0.01", "--t-end", "0.01", "--out", dir + "/one_step_" + program});
+    const Seconds t = best_of(runs, [&] { return time_process(args); }).best;
+    one_step.add_row({std::string("`") + program + "`", format_fixed(1e3 * t.wall, 1), format_fixed(1e3 * t.cpu, 1)});
+  }
+  return one_step;
+}
+
+// A row of the two comparison tables: seconds of wall and CPU time, and the CPU time as a ratio to `ref`'s.
+std::vector<std::string> row(const char* what, const Timings& t, const Timings& ref) {
+  return {what, format_fixed(t.best.wall, 3), format_fixed(t.best.cpu, 3), format_fixed(t.slowest_cpu, 3),
+          format_fixed(t.best.cpu / ref.best.cpu, 2)};
 }
 
 }  // namespace
@@ -153,91 +162,55 @@ int main(int argc, char** argv) {
       std::printf("lowest z at T = %g s: %.9g m\n", T, cloth.lowest_z(cloth.run(h, T)));
       return 0;
     }
-    prepare_outputs(opt.run.out_dir, {"odeint_comparison.md", "odeint_comparison.txt"});
+    prepare_outputs(opt.run.out_dir, outputs);
     const std::string dir = opt.run.out_dir;
-    const std::string K = format_number(s.stiffness), D = format_number(s.damping), H = format_number(h),
-                      TT = format_number(T), M = std::to_string(s.grid.M), N = std::to_string(s.grid.N);
-    const std::vector<std::string> scene_args = {"--grid", M + "x" + N, "--spacing", format_number(s.grid.d),
-                                                 "--mass", format_number(s.mass), "--v0",
-                                                 format_number(s.initial_velocity_z), "--K", K, "--damping", D,
-                                                 "--dt", H, "--t-end", TT};
+    const std::vector<std::string> scene_args = scene_arguments(s, h, T);
 
-    // 1. Whole programs, each as a process.
+    // 1. Whole programs, each as a process, alternately: one configuration on each side, as many runs.
     std::vector<std::string> plain_args = {argv[0], "--program", "plain"}, ch03_args = {ch03};
     plain_args.insert(plain_args.end(), scene_args.begin(), scene_args.end());
     ch03_args.insert(ch03_args.end(), scene_args.begin(), scene_args.end());
     ch03_args.insert(ch03_args.end(), {"--out", dir + "/ch03_run"});
-    Timings plain_timings, ch03_timings;
-    for (int k = 0; k < runs; ++k) {  // alternated, so that a busy spell of the machine hits both
-      plain_timings.add(time_process(plain_args));
-      ch03_timings.add(time_process(ch03_args));
-    }
-    const ch06::Seconds plain_process = plain_timings.best, ch03_process = ch03_timings.best;
-
-    // 2. The integrators alone on the core's forces, and the reader's program in this process for reference.
-    const Scene scene(s);
-    ForceField field(scene);
-    Vector x_odeint, x_core;
-    ch06::PlainOdeintCloth::State y_plain;
-    const ch06::PlainOdeintCloth plain = plain_cloth(s);
-    Timings odeint_timings, engine_timings;
-    for (int k = 0; k < runs; ++k) {  // alternated as well
-      odeint_timings.add(time_in_process([&] { x_odeint = odeint_on_core_forces(field, h, T); }));
-      engine_timings.add(time_in_process([&] { x_core = core_engine(field, h, T); }));
-    }
-    const ch06::Seconds odeint_core = odeint_timings.best, engine = engine_timings.best;
-    const ch06::Seconds plain_in_process =
-        best_of(runs, [&] { return time_in_process([&] { y_plain = plain.run(h, T); }); }).best;
-
-    // Seconds of wall and CPU time, and the CPU time as a ratio to the first row of each table.
-    // One configuration on each side, timed the same number of times, alternately.
-    const auto row = [](const char* what, const Timings& t, const Timings& ref) {
-      return std::vector<std::string>{what, format_fixed(t.best.wall, 3), format_fixed(t.best.cpu, 3),
-                                      format_fixed(t.slowest_cpu, 3), format_fixed(t.best.cpu / ref.best.cpu, 2)};
-    };
+    Timings plain, ch03_run;
+    for (int k = 0; k < runs; ++k) plain.add(time_process(plain_args)), ch03_run.add(time_process(ch03_args));
     MarkdownTable programs({"program", "wall [s]", "CPU, fastest [s]", "CPU, slowest [s]", "ratio"}, "lrrrr");
-    programs.add_row(row("written with Boost.Odeint alone (process)", plain_timings, plain_timings));
-    programs.add_row(row("ch03_runge_kutta with its outputs (process)", ch03_timings, plain_timings));
-    MarkdownTable integrators({"integrator, on the project's forces", "wall [s]", "CPU, fastest [s]", "CPU, slowest [s]",
-                               "ratio"},
-                              "lrrrr");
-    integrators.add_row(row("odeint runge_kutta4", odeint_timings, odeint_timings));
-    integrators.add_row(row("generic Butcher-tableau engine, rk4", engine_timings, odeint_timings));
+    programs.add_row(row("written with Boost.Odeint alone (process)", plain, plain));
+    programs.add_row(row("ch03_runge_kutta with its outputs (process)", ch03_run, plain));
 
-    // 3. What a program costs beyond its integration: one step of h = 0.01 s of each single-run program on the
-    //    same scene, as a whole process (start-up, the scene, the fastest rates for run.txt, every output).
-    const std::filesystem::path bin = std::filesystem::path(ch03).parent_path();
-    MarkdownTable one_step({"one step of h = 0.01 s, whole process", "wall [ms]", "CPU [ms]"}, "lrr");
-    for (const char* program : {"ch02_explicit_euler", "ch03_runge_kutta", "ch04_implicit_euler", "ch08_adaptive_step",
-                                "ch09_implicit_runge_kutta"}) {
-      std::vector<std::string> args = {(bin / program).string()};
-      args.insert(args.end(), scene_args.begin(), scene_args.end() - 4);  // the scene, without --dt and --t-end
-      if (std::string(program) != "ch08_adaptive_step") args.insert(args.end(), {"--dt", "0.01"});  // ch08 adapts
-      args.insert(args.end(), {"--t-end", "0.01", "--out", dir + "/one_step_" + program});
-      const ch06::Seconds t = best_of(std::max(runs, 5), [&] { return time_process(args); }).best;
-      one_step.add_row({std::string("`") + program + "`", format_fixed(1e3 * t.wall, 1), format_fixed(1e3 * t.cpu, 1)});
-    }
-    const std::string table = "RK4, h = " + H + " s over T = " + TT + " s on the " + M + " x " + N +
-                              " cloth with K = " + K + " N/m, D = " + D + " N s/m; each side one configuration, timed " +
-                              std::to_string(runs) + " times alternately with the other: the fastest and the slowest " +
-                              "CPU time, and the ratio of the fastest.\n\n" + programs.markdown() + "\n" +
-                              integrators.markdown() + "\nOn the same cloth, the fastest of " +
-                              std::to_string(std::max(runs, 5)) + " runs:\n\n" + one_step.markdown();
+    // 2. The integrators alone on the core's forces.
+    const Integrators in = time_integrators(s, h, T, runs);
+    MarkdownTable integrators({"integrator, on the project's forces", "wall [s]", "CPU, fastest [s]",
+                               "CPU, slowest [s]", "ratio"},
+                              "lrrrr");
+    integrators.add_row(row("odeint runge_kutta4", in.odeint, in.odeint));
+    integrators.add_row(row("generic Butcher-tableau engine, rk4", in.engine, in.odeint));
+
+    // 3. What the program around the integration costs.
+    const int process_runs = std::max(runs, 5);
+    const MarkdownTable one_step = one_step_table(std::filesystem::path(ch03).parent_path(), scene_args, dir, process_runs);
+
+    const std::string table =
+        "RK4, h = " + format_number(h) + " s over T = " + format_number(T) + " s on the " + std::to_string(s.grid.M) +
+        " x " + std::to_string(s.grid.N) + " cloth with K = " + format_number(s.stiffness) + " N/m, D = " +
+        format_number(s.damping) + " N s/m; each side one configuration, timed " + std::to_string(runs) +
+        " times alternately with the other: the fastest and the slowest CPU time, and the ratio of the fastest.\n\n" +
+        programs.markdown() + "\n" + integrators.markdown() + "\nOn the same cloth, the fastest of " +
+        std::to_string(process_runs) + " runs:\n\n" + one_step.markdown();
     write_text_fragment(dir + "/odeint_comparison.md", table + "\n" + measured_by_line(reader_command(argc, argv)));
     std::fputs(table.c_str(), stdout);
     write_key_values(dir + "/odeint_comparison.txt",
-                     {{"plain_process_cpu_seconds", format_number(plain_process.cpu)},
-                      {"ch03_process_cpu_seconds", format_number(ch03_process.cpu)},
-                      {"ch03_over_plain", format_number(ch03_process.cpu / plain_process.cpu, 3)},
-                      {"plain_in_process_cpu_seconds", format_number(plain_in_process.cpu)},
-                      {"odeint_core_forces_cpu_seconds", format_number(odeint_core.cpu)},
-                      {"engine_cpu_seconds", format_number(engine.cpu)},
-                      {"engine_over_odeint", format_number(engine.cpu / odeint_core.cpu, 3)},
-                      {"lowest_z_plain", format_number(plain.lowest_z(y_plain), 9)},
-                      {"lowest_z_odeint_core", format_number(lowest_z(x_odeint), 9)},
-                      {"lowest_z_engine", format_number(lowest_z(x_core), 9)}});
+                     {{"plain_process_cpu_seconds", format_number(plain.best.cpu)},
+                      {"ch03_process_cpu_seconds", format_number(ch03_run.best.cpu)},
+                      {"ch03_over_plain", format_number(ch03_run.best.cpu / plain.best.cpu, 3)},
+                      {"plain_in_process_cpu_seconds", format_number(in.plain.best.cpu)},
+                      {"odeint_core_forces_cpu_seconds", format_number(in.odeint.best.cpu)},
+                      {"engine_cpu_seconds", format_number(in.engine.best.cpu)},
+                      {"engine_over_odeint", format_number(in.engine.best.cpu / in.odeint.best.cpu, 3)},
+                      {"lowest_z_plain", format_number(in.z_plain, 9)},
+                      {"lowest_z_odeint_core", format_number(in.z_odeint, 9)},
+                      {"lowest_z_engine", format_number(in.z_engine, 9)}});
     std::printf("lowest z at T: odeint alone %.9g m, odeint on the core's forces %.9g m, core engine %.9g m\n",
-                plain.lowest_z(y_plain), lowest_z(x_odeint), lowest_z(x_core));
+                in.z_plain, in.z_odeint, in.z_engine);
     return 0;
   });
 }

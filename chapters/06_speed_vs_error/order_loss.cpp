@@ -1,7 +1,12 @@
 // Chapter 6: what springs passing near zero length do to the methods' orders. The local error of RK4 step by step
 // beside the shortest spring tells where the error is made; successive step halvings tell the observed order
 // over a short horizon (before the fold) and a long one (through it), with no reference solution needed.
+#include "page_text.hpp"
 #include "studies.hpp"
+
+#include "analysis/trajectory_measures.hpp"
+#include "base/format_number.hpp"
+#include "program/fragment.hpp"
 
 #include "integrators/method_registry.hpp"
 #include "program/interrupt.hpp"
@@ -46,8 +51,8 @@ LocalError local_error_along_trajectory(const SceneParams& base, double T, doubl
     x_half = x, v_half = v;
     rk4->step(0.5 * h, x_half, v_half);
     rk4->step(0.5 * h, x_half, v_half);
-    const double local = 16.0 / 15.0 * max_particle_distance(x_full, x_half);
-    const double local_velocity = 16.0 / 15.0 * max_particle_distance(v_full, v_half);
+    const double local = 16.0 / 15.0 * largest_distance(x_full, x_half);
+    const double local_velocity = 16.0 / 15.0 * largest_distance(v_full, v_half);
     const double t = static_cast<double>(k) * h;
     std::fprintf(f, "%.6f %.6e %.6e %.6e\n", t, local, local_velocity,
                  shortest_spring(scene, x, all).length_over_rest);
@@ -97,7 +102,7 @@ std::vector<ObservedOrder> observed_orders(const SceneParams& base, const std::v
         }
         if (previous.size() > 0) {
           const double h = T / static_cast<double>(1LL << (k - 1));
-          const double difference = max_particle_distance(previous, run.x.back());
+          const double difference = largest_distance(previous, run.x.back());
           const double order = previous_difference > 0 ? std::log2(previous_difference / difference) : NAN;
           out.push_back({method, T, h, difference, order});
           std::fprintf(f, "%s %g %.6e %.6e %.3f\n", method, T, h, difference, order);
@@ -114,5 +119,55 @@ std::vector<ObservedOrder> observed_orders(const SceneParams& base, const std::v
   return out;
 }
 // [observed_orders]
+
+void write_order_loss_fragments(const std::string& dir, const std::vector<LocalError>& local_errors,
+                                const std::vector<ObservedOrder>& orders, const std::string& command) {
+  MarkdownTable jumps({"h [s]", "steps with a jump", "velocity error [m/s]", "16/15 J h / 4", "position error [m]",
+                       "16/15 J h^2 / 6"},
+                      "rrrrrr");
+  for (const LocalError& e : local_errors)
+    jumps.add_row({g(e.h), std::to_string(e.jump_steps) + " of " + std::to_string(e.steps), g(e.worst_velocity, 4),
+                   g(16.0 / 15.0 * e.jump * e.h / 4, 4), g(e.worst_position, 4),
+                   g(16.0 / 15.0 * e.jump * e.h * e.h / 6, 4)});
+  write_table_fragment(dir + "/jumps.md", jumps, command);
+  std::string sentence;
+  for (const LocalError& e : local_errors)
+    if (std::abs(e.h - 1e-3) < 1e-12)
+      sentence = "With h = 1e-3 s, a step without a jump makes a local error of about " + g(e.smooth_median) +
+                 " m (the median over the run); " + std::to_string(e.jump_steps) + " of the " +
+                 std::to_string(e.steps) + " steps are different: their errors reach " + g(e.worst_position) +
+                 " m, " + sci(e.worst_position / e.smooth_median, 1) + " times more.\n";
+  write_text_fragment(dir + "/local_error.md", sentence);
+
+  // Observed orders from successive halvings: one row per method and horizon, one column per step h = T / division.
+  std::vector<long long> divisions;
+  std::vector<std::pair<std::string, double>> rows;
+  for (const ObservedOrder& o : orders) {
+    if (const long long d = std::llround(o.T / o.h); std::find(divisions.begin(), divisions.end(), d) == divisions.end())
+      divisions.push_back(d);
+    if (std::find(rows.begin(), rows.end(), std::make_pair(o.method, o.T)) == rows.end()) rows.emplace_back(o.method, o.T);
+  }
+  std::sort(divisions.begin(), divisions.end());
+  std::vector<std::string> header = {"method", "T [s]", "difference at h = T/" + std::to_string(divisions.front())};
+  for (std::size_t i = 1; i < divisions.size(); ++i) header.push_back("order at T/" + std::to_string(divisions[i]));
+  header.push_back("difference at T/" + std::to_string(divisions.back()));
+  MarkdownTable table(header, std::string("l").append(header.size() - 1, 'r'));
+  for (const auto& [method, T] : rows) {
+    std::vector<std::string> row = {method_title(method), g(T), "-"};
+    std::vector<std::string> order_cells(divisions.size() - 1, "-");
+    std::string last = "-";
+    for (const ObservedOrder& o : orders) {
+      if (o.method != method || o.T != T) continue;
+      const auto at = std::find(divisions.begin(), divisions.end(), std::llround(o.T / o.h)) - divisions.begin();
+      if (at == 0) row[2] = g(o.difference);
+      if (at > 0 && !std::isnan(o.order)) order_cells[static_cast<std::size_t>(at - 1)] = format_fixed(o.order, 2);
+      if (at + 1 == static_cast<long>(divisions.size())) last = g(o.difference);
+    }
+    row.insert(row.end(), order_cells.begin(), order_cells.end());
+    row.push_back(last);
+    table.add_row(row);
+  }
+  write_table_fragment(dir + "/observed_orders.md", table, command);
+}
 
 }  // namespace ch06

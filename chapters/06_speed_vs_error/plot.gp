@@ -25,7 +25,7 @@ do for [cfg in "K50_D0 K200_D20 K5000_D20"] {
   set logscale xy
   set format x '10^{%L}'
   set format y '10^{%L}'
-  set xlabel 'wall-clock time of one run to T = 0.25 s [s] (median of 5)'
+  set xlabel 'thread CPU time of one run to T = 0.25 s [s] (fastest of 5)'
   set ylabel 'largest particle position error at T [m]'
   K = substr(cfg, 2, strstrt(cfg, '_') - 1)
   D = substr(cfg, strstrt(cfg, '_D') + 2, strlen(cfg))
