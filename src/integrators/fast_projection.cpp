@@ -11,7 +11,7 @@
 // waves from the step. The shear springs are as stiff here, but they cannot be held too: a flat sheet has two
 // in-plane freedoms a particle, and structural springs with even one diagonal per square are more constraints
 // than that, so at the flat start J M^-1 J^T would be singular and near it the projection would not converge.
-// Given their own compliance alpha = 1/K, the shear springs' equations C + alpha~ Lambda = 0 are solvable
+// Given their own compliance alpha = 1/K, the shear springs' equations C = alpha~ Lambda are solvable
 // everywhere and the matrix J M^-1 J^T + diag(alpha~) is definite (every self-stress of the grid uses a diagonal),
 // which is XPBD's form of a spring (Macklin et al. 2016) solved by Newton's method instead of Gauss-Seidel. The
 // flexion springs stay forces: their lengths change at second order in a fold, which is how the sheet bends.
@@ -29,9 +29,11 @@
 //   x~ = x_n + h v_n + h^2/2 M^-1 f(x_n, v_n),  x_{n+1} = x~ - M^-1 J^T Lambda,  C(x_{n+1}) + alpha~ Lambda = 0,
 //   v* = (x_{n+1} - x_n) / h + h/2 M^-1 (f(x_{n+1}, .) + f_shear(x_{n+1})),
 //   v_{n+1} = v* - M^-1 J_s^T mu with J_s(x_{n+1}) v_{n+1} = 0 for the structural constraints.
-// Here alpha~ = 2 alpha / h^2 (Lambda is h^2/2 times the shear force). The multipliers act along the gradients of
-// the last iterate rather than SHAKE's J(x_n); the difference is O(h) in direction on an O(h^2) correction, which
-// keeps second order in the hard constraints. The shear springs' force enters both half kicks at x_{n+1}, which
+// Here alpha~ = 2 alpha / h^2 (Lambda is h^2/2 times the shear force). The multipliers act along SHAKE's
+// J(x_n) (Ryckaert, Ciccotti and Berendsen 1977), solved by a simplified Newton method with the matrix
+// J(x_n) M^-1 J(x_n)^T + diag(alpha~) factorized once per step; it contracts by about the angle a constraint turns
+// in a step. Along the iterates' own gradients instead (as fast projection does) the positions would change by
+// O(h^3) a step, and the velocity (x_{n+1} - x_n) / h by O(h^2): first order. The shear springs' force enters both half kicks at x_{n+1}, which
 // is first order in how fast that force changes; near its quasi-static value (the stiff shear modes are not
 // excited) that change is as slow as the motion and its error small. The dampers take the velocities of the
 // moment: explicit, as in symplectic Euler (D h / m is 0.06 at the steps used here).
@@ -156,11 +158,21 @@ void ConstrainedCloth::apply_gradient_transpose(const Vector& lambda, Slots& Y, 
 }
 
 // [projection]
-bool ConstrainedCloth::project_positions() {
+bool ConstrainedCloth::project_positions(bool along_start_gradients) {
   const int m = constraint_count();
   Lambda_.setZero();
+  if (along_start_gradients) {  // SHAKE: u and the factorization stay those of x_n, C is taken at each iterate
+    if (!factorize(all_, m)) return fail(StepFailureKind::factorization_singular, name_ + ": J M^-1 J^T singular");
+  }
   for (int k = 0;; ++k) {
-    directions(X_);  // u and C at the iterate x_k
+    if (along_start_gradients) {
+      for (int c = 0; c < m; ++c) {
+        const Link& l = constraints_[static_cast<std::size_t>(c)];
+        C_[c] = (X_.col(l.p) - X_.col(l.q)).norm() - l.rest_length;
+      }
+    } else {
+      directions(X_);  // u and C at the iterate x_k
+    }
     rhs_ = C_ - alpha_tilde_.cwiseProduct(Lambda_);
     last_residual_ = m == 0 ? 0.0 : rhs_.cwiseAbs().maxCoeff();
     if (last_residual_ <= tolerance_) return true;
@@ -168,11 +180,12 @@ bool ConstrainedCloth::project_positions() {
       return fail(StepFailureKind::newton_not_converged,
                   name_ + ": constraint residual " + std::to_string(last_residual_) + " m after " +
                       std::to_string(k) + " projections");
-    if (!factorize(all_, m)) return fail(StepFailureKind::factorization_singular, name_ + ": J M^-1 J^T singular");
+    if (!along_start_gradients && !factorize(all_, m))
+      return fail(StepFailureKind::factorization_singular, name_ + ": J M^-1 J^T singular");
     delta_ = all_.solver.solve(rhs_);
     ++counters_.linear_solves;
     ++counters_.newton_iterations;
-    apply_gradient_transpose(delta_, X_, m);  // x_{k+1} = x_k - M^-1 J(x_k)^T dLambda
+    apply_gradient_transpose(delta_, X_, m);  // x_{k+1} = x_k - M^-1 J^T dLambda
     Lambda_ += delta_;
   }
 }
@@ -196,14 +209,16 @@ bool ConstrainedCloth::step(double h, Vector& x, Vector& v) {
     soft_forces(X_, V_);
     V_.leftCols(n) += (h * inverse_mass_) * F_.leftCols(n);  // symplectic Euler's prediction
     X_.leftCols(n) += h * V_.leftCols(n);
-    if (!project_positions()) return false;
+    if (!project_positions(false)) return false;
     V_.leftCols(n) = (X_.leftCols(n) - start_.leftCols(n)) / h;
     // [fast_projection_step]
   } else {
     // [rattle_step]
     soft_forces(X_, V_);
+    directions(X_);  // J(x_n): SHAKE's directions
     X_.leftCols(n) += h * V_.leftCols(n) + (0.5 * h * h * inverse_mass_) * F_.leftCols(n);  // half kick, drift
-    if (!project_positions()) return false;
+    if (!project_positions(true)) return false;
+    directions(X_);  // J(x_{n+1})
     V_.leftCols(n) = (X_.leftCols(n) - start_.leftCols(n)) / h;
     soft_forces(X_, V_);
     for (int c = hard_count_; c < constraint_count(); ++c) {  // the shear springs' force at x_{n+1}: -K C u

@@ -25,12 +25,12 @@ enum class ConstrainedScheme {
 };
 
 /// The constrained step. Constraints: every structural spring held at its rest length (hard), and every shear
-/// spring as a compliant constraint C + alpha lambda = 0 with alpha = 1/K, its own spring law solved implicitly.
+/// spring as a compliant constraint C = alpha lambda with alpha = 1/K (lambda its tension), its own spring law solved implicitly.
 /// Forces: gravity, the flexion springs, and every damper. A structural damper does no work (its stretching rate
 /// is zero); a structural spring's force is its constraint's multiplier.
 class ConstrainedCloth final : public Stepper {
  public:
-  /// `name` is the registry's name; `tolerance` the largest constraint residual |C + alpha~ Lambda| [m] a projected
+  /// `name` is the registry's name; `tolerance` the largest constraint residual |C - alpha~ Lambda| [m] a projected
   /// state may keep (|l - L0| for the structural springs).
   ConstrainedCloth(ForceField& field, std::string name, ConstrainedScheme scheme, double tolerance = 1e-10,
                    int max_iterations = 50);
@@ -42,7 +42,7 @@ class ConstrainedCloth final : public Stepper {
   /// The largest |(v_p - v_q) . u| over the structural springs at (x, v) [m/s]: v's distance from their tangent
   /// space.
   [[nodiscard]] double largest_stretching_rate(const Vector& x, const Vector& v);
-  /// The largest residual |C + alpha~ Lambda| the last step's projection left, over every constraint [m].
+  /// The largest residual |C - alpha~ Lambda| the last step's projection left, over every constraint [m].
   [[nodiscard]] double last_residual() const { return last_residual_; }
   [[nodiscard]] int hard_constraint_count() const { return hard_count_; }
   [[nodiscard]] int constraint_count() const { return static_cast<int>(constraints_.size()); }
@@ -74,7 +74,7 @@ class ConstrainedCloth final : public Stepper {
   void soft_forces(const Slots& X, const Slots& V);      // F_ = gravity + flexion springs + every damper
   void directions(const Slots& X);                       // u_ and C_ of every constraint at X
   void apply_gradient_transpose(const Vector& lambda, Slots& Y, int count);  // Y -= M^-1 J^T lambda
-  bool project_positions();                              // X_ onto C + alpha~ Lambda = 0
+  bool project_positions(bool along_start_gradients);    // X_ onto C - alpha~ Lambda = 0
   bool fail(StepFailureKind kind, const std::string& reason);
 
   std::string name_;
