@@ -89,6 +89,7 @@ void ConstrainedCloth::build(Gram& g, int count) {
     if (l.q < free_count_) incident[static_cast<std::size_t>(l.q)].emplace_back(c, -1.0);
   }
   std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<std::size_t>(count));
   for (int c = 0; c < count; ++c) entries.emplace_back(c, c, 1.0);
   for (const auto& near : incident)
     for (const auto& [a, sa] : near)
