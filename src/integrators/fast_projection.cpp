@@ -39,6 +39,8 @@
 // moment: explicit, as in symplectic Euler (D h / m is 0.06 at the steps used here).
 #include "integrators/fast_projection.hpp"
 
+#include "base/input_error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -49,6 +51,12 @@ ConstrainedCloth::ConstrainedCloth(ForceField& field, std::string name, Constrai
                                    int max_iterations)
     : Stepper(field), name_(std::move(name)), scheme_(scheme), tolerance_(tolerance), max_iterations_(max_iterations) {
   const Scene& scene = field.scene();
+  // Held at their rest lengths, the edges of a sheet hung by its corners are straight chains between two pinned
+  // particles: they cannot sag, and the projection has no room to move them back once they do.
+  if (scene.params().pins == PinSet::corners)
+    throw InputError(name_ + ": a sheet hung by its four corners cannot move when its structural springs are "
+                     "constraints (each edge is a straight chain between two pins): expected --pins edge, corner, "
+                     "none or clamped");
   free_count_ = scene.free_count();
   inverse_mass_ = 1.0 / scene.params().mass;
   const auto& springs = scene.springs();
@@ -108,6 +116,11 @@ void ConstrainedCloth::build(Gram& g, int count) {
   };
   for (Coupling& k : g.couplings) k.value = index(k.a, k.b);
   for (int c = 0; c < count; ++c) g.diagonal.push_back(index(c, c));
+  // A straight chain of structural springs between two pinned particles (an edge of the sheet hung by its corners)
+  // can carry a tension the other constraints do not see, so J M^-1 J^T is singular at its straight state. A shift
+  // of 1e-8 of the diagonal makes each solve a Levenberg-Marquardt step there; the iteration still drives the
+  // residual itself to zero.
+  g.solver.setShift(1e-8 * 2 * inverse_mass_);
   g.solver.analyzePattern(g.S);  // the ordering and the symbolic factorization, once per scene
 }
 
@@ -236,9 +249,16 @@ bool ConstrainedCloth::step(double h, Vector& x, Vector& v) {
     }
     if (!factorize(hard_, hard_count_))
       return fail(StepFailureKind::factorization_singular, name_ + ": J M^-1 J^T of the structural springs singular");
-    delta_.head(hard_count_) = hard_.solver.solve(rhs_.head(hard_count_));
-    ++counters_.linear_solves;
-    apply_gradient_transpose(delta_, V_, hard_count_);
+    for (int pass = 0; pass < 2; ++pass) {  // the second pass removes what the solver's shift left
+      if (pass == 1)
+        for (int c = 0; c < hard_count_; ++c) {
+          const Link& l = constraints_[static_cast<std::size_t>(c)];
+          rhs_[c] = u_.col(c).dot(V_.col(l.p) - V_.col(l.q));
+        }
+      delta_.head(hard_count_) = hard_.solver.solve(rhs_.head(hard_count_));
+      ++counters_.linear_solves;
+      apply_gradient_transpose(delta_, V_, hard_count_);
+    }
     // [rattle_step]
   }
   ++counters_.steps;

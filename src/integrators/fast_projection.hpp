@@ -30,6 +30,7 @@ enum class ConstrainedScheme {
 /// is zero); a structural spring's force is its constraint's multiplier.
 class ConstrainedCloth final : public Stepper {
  public:
+  /// Throws InputError for a sheet pinned at its four corners (see fast_projection.cpp).
   /// `name` is the registry's name; `tolerance` the largest constraint residual |C - alpha~ Lambda| [m] a projected
   /// state may keep (|l - L0| for the structural springs).
   ConstrainedCloth(ForceField& field, std::string name, ConstrainedScheme scheme, double tolerance = 1e-10,
