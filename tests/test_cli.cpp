@@ -415,8 +415,11 @@ TEST_CASE("ch10_cloth: an unknown method lists every registered name, and a meth
 TEST_CASE("ch10_cloth: every registered method runs by name and writes the standard outputs with its settings") {
   for (const std::string& method : cloth::method_names()) {
     const ProgramFolder folder;
-    const ProgramRun run =
-        folder.run("ch10_cloth", {"--method", method, "--grid", "5x5", "--dt", "0.005", "--t-end", "0.02", "--out", "run"});
+    std::vector<std::string> args = {"--method", method, "--grid", "5x5", "--dt", "0.005", "--t-end", "0.02", "--out", "run"};
+    // Held at their rest lengths, the structural springs of a sheet hung by its corners keep it from moving.
+    if (cloth::find_method(method).family == cloth::MethodFamily::constrained)
+      args.insert(args.end(), {"--pins", "edge", "--v0", "0"});
+    const ProgramRun run = folder.run("ch10_cloth", args);
     CAPTURE(method);
     CAPTURE(run.err);
     REQUIRE(run.status == 0);

@@ -55,6 +55,7 @@ TEST_CASE("the closed form solves the oscillator: the model's force on the displ
 TEST_CASE("every registered method's observed order on the damped spring, from errors at h, h/2, h/4, is the order "
           "it claims within 0.15") {
   for (const Method& m : methods()) {
+    if (m.family == MethodFamily::constrained) continue;  // holds the spring at its rest length: no oscillator left
     // h small enough to be in the asymptotic range, large enough to keep the errors above rounding.
     const double h = m.order == 1 ? 0.003125 : 0.0125;
     const double p = fitted_order(m.name, h);

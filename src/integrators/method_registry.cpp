@@ -6,6 +6,7 @@
 #include "integrators/bdf2.hpp"
 #include "integrators/embedded_runge_kutta.hpp"
 #include "integrators/explicit_runge_kutta.hpp"
+#include "integrators/fast_projection.hpp"
 #include "integrators/implicit_tableaus.hpp"
 #include "integrators/local_global.hpp"
 #include "integrators/symplectic_euler.hpp"
@@ -23,7 +24,8 @@ const NameTable<MethodFamily>& method_families() {
                                               {MethodFamily::partitioned, "partitioned"},
                                               {MethodFamily::implicit_runge_kutta, "implicit_runge_kutta"},
                                               {MethodFamily::multistep, "multistep"},
-                                              {MethodFamily::position_based, "position_based"}});
+                                              {MethodFamily::position_based, "position_based"},
+                                              {MethodFamily::constrained, "constrained"}});
   return table;
 }
 
@@ -112,6 +114,14 @@ std::unique_ptr<Stepper> make_xpbd(const Method& m, ForceField& field, const Met
 // Small steps: one XPBD iteration per substep, by definition, and 20 substeps per step unless told.
 std::unique_ptr<Stepper> make_small_steps(const Method& m, ForceField& field, const MethodSettings& settings) {
   return std::make_unique<Xpbd>(field, m.name, 1, settings.substeps.value_or(20));
+}
+
+// The inextensible cloth's two steps (Chapter 10, integrators/fast_projection.hpp).
+std::unique_ptr<Stepper> make_fast_projection(const Method& m, ForceField& field, const MethodSettings& /*settings*/) {
+  return std::make_unique<ConstrainedCloth>(field, m.name, ConstrainedScheme::fast_projection);
+}
+std::unique_ptr<Stepper> make_rattle(const Method& m, ForceField& field, const MethodSettings& /*settings*/) {
+  return std::make_unique<ConstrainedCloth>(field, m.name, ConstrainedScheme::rattle);
 }
 
 // A row of the explicit Runge-Kutta family: the tableau carries the method's name and order.
@@ -303,6 +313,15 @@ const std::vector<Method>& methods() {
       {"small_steps", "small steps", "one XPBD iteration per substep, many substeps "
        "(\\ref ref_macklin2019 \"Macklin et al. 2019\")",
        MethodFamily::position_based, 1, std::nullopt, nullptr, make_small_steps},
+      // The inextensible cloth (Chapter 10): structural springs and one shear diagonal per square as exact distance
+      // constraints, the other springs as forces. Fast projection (Goldenthal et al. 2007) projects a symplectic
+      // Euler prediction and takes v = (x_{n+1} - x_n) / h: first order. RATTLE (Andersen 1983) projects
+      // positions along the step's starting gradients and velocities onto the tangent space: second order.
+      {"fast_projection", "fast projection", "inextensible cloth: a symplectic Euler prediction projected onto "
+       "the constraints (Goldenthal et al. 2007)", MethodFamily::constrained, 1, std::nullopt, nullptr,
+       make_fast_projection},
+      {"rattle", "RATTLE", "inextensible cloth: velocity Verlet with positions and velocities projected onto the "
+       "constraints (Andersen 1983)", MethodFamily::constrained, 2, std::nullopt, nullptr, make_rattle},
   };
   return table;
 }

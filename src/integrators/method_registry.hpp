@@ -29,9 +29,10 @@ enum class MethodFamily {
   implicit_runge_kutta,  ///< a tableau with entries on or above the diagonal: stages solved by Newton's method
   multistep,             ///< a step that uses earlier steps as well as the current state
   position_based,        ///< springs as compliant constraints projected around an inertial prediction (XPBD)
+  constrained,           ///< stiff springs as exact distance constraints, the rest as forces (Chapter 10)
 };
 /// The families by name: explicit_runge_kutta, embedded_runge_kutta, partitioned, implicit_runge_kutta, multistep,
-/// position_based.
+/// position_based, constrained.
 const NameTable<MethodFamily>& method_families();
 
 /// The settings a method's factory may read. Explicit methods read none; implicit ones read Newton's.
