@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -205,21 +206,18 @@ void BendingEnergy::add_forces(const ConstVectorRef& x, VectorRef f) {
   }
 }
 
-void BendingEnergy::build_pattern() {
-  const int n = scene_.dof_count();
-  std::vector<Eigen::Triplet<double>> entries;
+void BendingEnergy::add_pattern_blocks(std::vector<Eigen::Triplet<double>>& triplets) const {
   for (const Hinge& h : hinges_)
     for (int a : h.particle)
       for (int b : h.particle) {
         const int sa = scene_.slot(a), sb = scene_.slot(b);
         if (sa >= scene_.free_count() || sb >= scene_.free_count()) continue;
         for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) entries.emplace_back(3 * sa + r, 3 * sb + c, 0.0);
+          for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * sa + r, 3 * sb + c, 0.0);
       }
-  pattern_.resize(n, n);
-  pattern_.setFromTriplets(entries.begin(), entries.end());
-  pattern_.makeCompressed();
-  pattern_.coeffs().setZero();
+}
+
+void BendingEnergy::bind(const SparseMatrix& pattern) {
   block_start_.resize(hinges_.size());
   for (std::size_t k = 0; k < hinges_.size(); ++k)
     for (int a = 0; a < 4; ++a)
@@ -229,18 +227,34 @@ void BendingEnergy::build_pattern() {
           int& start = block_start_[k][(4 * a + b) * 3 + c];
           start = -1;
           if (sa >= scene_.free_count() || sb >= scene_.free_count()) continue;
+          // Rows are sorted within a column: the block's first row by bisection.
           const int column = 3 * sb + c;
-          for (int p = pattern_.outerIndexPtr()[column]; p < pattern_.outerIndexPtr()[column + 1]; ++p)
-            if (pattern_.innerIndexPtr()[p] == 3 * sa) start = p;
+          const int* rows = pattern.innerIndexPtr();
+          const int* first = rows + pattern.outerIndexPtr()[column];
+          const int* last = rows + pattern.outerIndexPtr()[column + 1];
+          const int* found = std::lower_bound(first, last, 3 * sa);
+          if (found == last || *found != 3 * sa)
+            throw std::logic_error("BendingEnergy::bind: the pattern lacks a hinge block");
+          start = static_cast<int>(found - rows);
         }
-  H_ = pattern_;
 }
 
 const SparseMatrix& BendingEnergy::hessian(const ConstVectorRef& x, bool definite) {
-  if (block_start_.size() != hinges_.size() || pattern_.rows() != scene_.dof_count()) build_pattern();
-  scene_.all_positions(x, all_);
+  if (H_.rows() != scene_.dof_count()) {
+    std::vector<Eigen::Triplet<double>> triplets;
+    add_pattern_blocks(triplets);
+    H_.resize(scene_.dof_count(), scene_.dof_count());
+    H_.setFromTriplets(triplets.begin(), triplets.end());
+    H_.makeCompressed();
+    bind(H_);
+  }
   H_.coeffs().setZero();
-  double* values = H_.valuePtr();
+  add_hessian(x, definite, 1.0, H_.valuePtr());
+  return H_;
+}
+
+void BendingEnergy::add_hessian(const ConstVectorRef& x, bool definite, double scale, double* values) {
+  scene_.all_positions(x, all_);
   for (std::size_t k = 0; k < hinges_.size(); ++k) {
     const Hinge& h = hinges_[k];
     Matrix12 He;
@@ -248,14 +262,15 @@ const SparseMatrix& BendingEnergy::hessian(const ConstVectorRef& x, bool definit
       // E = (B/2) shape theta^2: H = B shape (grad theta grad theta^T + theta d^2 theta).
       const Vector12 y = gather(h);
       const Vector12 g = hinge_angle_gradient(y);
-      He = B_ * h.shape * g * g.transpose();
-      if (!definite) He += B_ * h.shape * hinge_angle(y) * hinge_angle_hessian(y);
+      He = (scale * B_ * h.shape) * g * g.transpose();
+      if (!definite) He += (scale * B_ * h.shape * hinge_angle(y)) * hinge_angle_hessian(y);
     } else {
       // E = (B / 2A) |sum w_i x_i|^2: H = (B / A) w w^T (x) I3, the same at every x.
       He.setZero();
+      const double c = scale * B_ * h.weight_factor / h.area;
       for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b)
-          He.block<3, 3>(3 * a, 3 * b) = B_ * h.weight_factor / h.area * h.weight[a] * h.weight[b] * Eigen::Matrix3d::Identity();
+          He.block<3, 3>(3 * a, 3 * b).diagonal().setConstant(c * h.weight[a] * h.weight[b]);
     }
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
@@ -265,7 +280,6 @@ const SparseMatrix& BendingEnergy::hessian(const ConstVectorRef& x, bool definit
           for (int r = 0; r < 3; ++r) values[start + r] += He(3 * a + r, 3 * b + c);
         }
   }
-  return H_;
 }
 
 }  // namespace cloth
