@@ -1,6 +1,7 @@
 // Chapter 12: bending that holds a shape. One strip in the cantilever test of textile laboratories, clamped level
 // and bent by its own weight, with a chosen bending model; its rest shape against the heavy elastica. With
-// --report-runs, the chapter's figures and tables (report.cpp).
+// --report-runs, the chapter's figures and tables (report.cpp, cost.cpp); with --drape-runs, the curtain with and
+// without bending (drape.cpp).
 #include "report.hpp"
 
 #include "analysis/cantilever.hpp"
@@ -96,7 +97,7 @@ int single_strip(const CantileverParams& params, const std::string& dir, const s
 
 int main(int argc, char** argv) {
   CantileverParams params;
-  bool report = false, full = false;
+  bool report = false, full = false, drape = false;
   CommandLine cli("ch12_bending",
                   "Chapter 12: a strip in the cantilever test, clamped level and bent by its own weight, with a\n"
                   "bending model; its rest shape against the heavy elastica.");
@@ -116,6 +117,8 @@ int main(int argc, char** argv) {
   });
   cli.add_switch("--report-runs", "the chapter's figures and tables: shapes, convergence, fabrics, cost",
                  [&] { report = true; });
+  cli.add_switch("--drape-runs", "the curtain of Chapter 10 hanging with and without bending, and its cost",
+                 [&] { drape = true; });
   cli.add_switch("--full", "with --report-runs: the convergence study down to L/160 (slower)", [&] { full = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
@@ -126,6 +129,11 @@ int main(int argc, char** argv) {
     params.stiffness = opt.scene.stiffness;
     params.model = opt.scene.bending;
     params.bending_rigidity = opt.scene.bending_rigidity;
+    if (report && drape) throw InputError("--drape-runs: expected either --report-runs or --drape-runs, not both");
+    if (drape) {
+      prepare_outputs(opt.run.out_dir, drape_outputs(), single_outputs());
+      return drape_runs(opt.run.out_dir, reader_command(argc, argv));
+    }
     if (report) {
       prepare_outputs(opt.run.out_dir, report_outputs(), single_outputs());
       return report_runs(opt.run.out_dir, full, reader_command(argc, argv));

@@ -39,12 +39,6 @@ struct Hinge {
   std::array<double, 4> weight{};
 };
 
-/// How each grid cell is cut into triangles.
-enum class GridSplit {
-  uniform,  ///< every cell along its diagonal from (i, j) to (i+1, j+1)
-  both      ///< both triangulations of the grid, each at half weight: the two diagonals' biases cancel
-};
-
 /// The splits by name: uniform, both.
 const NameTable<GridSplit>& grid_splits();
 
@@ -67,9 +61,15 @@ double hinge_angle(const Vector12& x);
 /// apices' positions along the edge (Bridson et al. 2003).
 Vector12 hinge_angle_gradient(const Vector12& x);
 
-/// d^2 theta / dx^2, the derivative of hinge_angle_gradient's formula taken in forward mode (Eigen's AutoDiff
-/// on the same formula, exact up to rounding; Tamstorf & Grinspun 2013 write it out in closed form).
+/// d^2 theta / dx^2 in closed form: hinge_angle_gradient's formula differentiated term by term (the apex terms'
+/// normals and lengths, the feet of the apices along the edge); Tamstorf & Grinspun 2013 derive an equivalent
+/// form from the normals' angles.
 Matrix12 hinge_angle_hessian(const Vector12& x);
+
+/// The same d^2 theta / dx^2 by forward-mode differentiation (Eigen's AutoDiff) of the gradient's formula: exact
+/// up to rounding and independent of the closed form's algebra, which the tests check against it; Chapter 12
+/// times the two.
+Matrix12 hinge_angle_hessian_forward_mode(const Vector12& x);
 
 /// The bending energy of a scene's sheet and its derivatives with respect to the free particles' positions.
 /// The flexion model has no hinges here: its energy is in the flexion springs of the ForceField. Owns the

@@ -131,7 +131,8 @@ ForceField::ForceField(const Scene& scene)
     }
   // A hinge couples its four particles: its apices lie two cells apart, beyond any spring.
   if (scene.params().bending != BendingModel::flexion) {
-    bending_ = std::make_unique<BendingEnergy>(scene, scene.params().bending, scene.params().bending_rigidity);
+    bending_ = std::make_unique<BendingEnergy>(scene, scene.params().bending, scene.params().bending_rigidity,
+                                               scene.params().bending_split);
     bending_->add_pattern_blocks(triplets);
   }
   pattern_.resize(3 * n_free, 3 * n_free);

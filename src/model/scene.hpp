@@ -35,6 +35,12 @@ enum class BendingModel {
   quadratic  ///< E = (B/2) c |sum_i w_i x_i|^2 / A_e per interior edge: constant Hessian (isometric bending)
 };
 
+/// How each grid cell is cut into triangles.
+enum class GridSplit {
+  uniform,  ///< every cell along its diagonal from (i, j) to (i+1, j+1)
+  both      ///< both triangulations of the grid, each at half weight: the two diagonals' biases cancel
+};
+
 const char* damping_model_name(DampingModel model);
 const char* pin_set_name(PinSet pins);
 
@@ -58,6 +64,7 @@ struct SceneParams {
   /// springs, when `families` has them, are then the only resistance to bending).
   BendingModel bending = BendingModel::flexion;
   double bending_rigidity = 5e-6;     ///< B [N m], used by the hinge and quadratic models
+  GridSplit bending_split = GridSplit::both;  ///< the triangles the hinge and quadratic energies live on
   double mass = 1.0;                  ///< m, the same for every particle [kg]
   double gravity = 9.81;              ///< g [m/s^2]; 0 removes the gravity term
   /// Where the grid rests (Chapter 11 lays a sheet on an inclined plane): particle (i, j) rests at
