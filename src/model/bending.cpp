@@ -283,6 +283,12 @@ void BendingEnergy::bind(const SparseMatrix& pattern) {
             throw std::logic_error("BendingEnergy::bind: the pattern lacks a hinge block");
           start = static_cast<int>(found - rows);
         }
+  // The quadratic model's Hessian does not depend on the positions: its values in this pattern, once.
+  constant_values_.clear();
+  if (model_ == BendingModel::quadratic) {
+    constant_values_.assign(static_cast<std::size_t>(pattern.nonZeros()), 0.0);
+    add_hinge_hessians(Vector(), false, 1.0, constant_values_.data());
+  }
 }
 
 const SparseMatrix& BendingEnergy::hessian(const ConstVectorRef& x, bool definite) {
@@ -300,7 +306,15 @@ const SparseMatrix& BendingEnergy::hessian(const ConstVectorRef& x, bool definit
 }
 
 void BendingEnergy::add_hessian(const ConstVectorRef& x, bool definite, double scale, double* values) {
-  scene_.all_positions(x, all_);
+  if (model_ == BendingModel::quadratic) {
+    for (std::size_t k = 0; k < constant_values_.size(); ++k) values[k] += scale * constant_values_[k];
+    return;
+  }
+  add_hinge_hessians(x, definite, scale, values);
+}
+
+void BendingEnergy::add_hinge_hessians(const ConstVectorRef& x, bool definite, double scale, double* values) {
+  if (model_ == BendingModel::hinge) scene_.all_positions(x, all_);
   for (std::size_t k = 0; k < hinges_.size(); ++k) {
     const Hinge& h = hinges_[k];
     Matrix12 He;

@@ -97,11 +97,14 @@ class BendingEnergy {
   /// Finds where every hinge block lies in `pattern`'s values (which must hold them), once per pattern.
   void bind(const SparseMatrix& pattern);
   /// values += scale d^2E/dx^2 (definite as for hessian()) in the values of the pattern last bound: allocates
-  /// nothing.
+  /// nothing. The quadratic model's constant Hessian is assembled once, by bind(), and added as one array.
   void add_hessian(const ConstVectorRef& x, bool definite, double scale, double* values);
 
  private:
   Vector12 gather(const Hinge& h) const;
+  // Every hinge's 12 x 12 Hessian, scaled, added block by block into the bound pattern's values (x is read by
+  // the hinge model only).
+  void add_hinge_hessians(const ConstVectorRef& x, bool definite, double scale, double* values);
   const Scene& scene_;
   BendingModel model_;
   double B_;
@@ -111,6 +114,7 @@ class BendingEnergy {
   // Per hinge, per block (a, b) of its 4 x 4 particles and per column c of the block: the value index of the
   // block's first row in that column of the pattern last bound, or -1 when a or b is pinned.
   std::vector<std::array<int, 48>> block_start_;
+  std::vector<double> constant_values_;  // the quadratic model's Hessian in the bound pattern's values
 };
 
 }  // namespace cloth
