@@ -151,12 +151,11 @@ Matrix12 hinge_angle_hessian_forward_mode(const Vector12& x) {
 // where dL = e^T de / L, dN1 = d(e x a) = -[a]x de + [e]x da and dN2 = d(b x e) = -[e]x db + [b]x de ([v]x w is
 // v x w); the feet s = (a . e) / |e|^2 change by ds = (e^T da + a^T de) / |e|^2 - 2 (a . e) e^T de / |e|^4. The
 // edge terms g0 = -(1 - s2) g2 - (1 - s3) g3 and g1 = -s2 g2 - s3 g3 then follow by the product rule. Every
-// piece is a 3 x 12 or 1 x 12 matrix: a few hundred flops, against forward mode's 12 derivatives of every step.
+// piece is a 3 x 3 block or a 1 x 3 row per particle, and the zero ones are never multiplied.
 Matrix12 hinge_angle_hessian(const Vector12& x) {
   using V3 = Eigen::Vector3d;
   using M3 = Eigen::Matrix3d;
-  using J = Eigen::Matrix<double, 3, 12>;
-  using Row = Eigen::Matrix<double, 1, 12>;
+  using R3 = Eigen::RowVector3d;
   const V3 x0 = x.segment<3>(0), e = x.segment<3>(3) - x0, a = x.segment<3>(6) - x0, b = x.segment<3>(9) - x0;
   const double e2 = e.squaredNorm(), L = std::sqrt(e2);
   const M3 I = M3::Identity();
@@ -165,28 +164,39 @@ Matrix12 hinge_angle_hessian(const Vector12& x) {
     S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
     return S;
   };
-  // d e, d a, d b as 3 x 12 selections of dx.
-  J De = J::Zero(), Da = J::Zero(), Db = J::Zero();
-  De.block<3, 3>(0, 0) = Da.block<3, 3>(0, 0) = Db.block<3, 3>(0, 0) = -I;
-  De.block<3, 3>(0, 3) = Da.block<3, 3>(0, 6) = Db.block<3, 3>(0, 9) = I;
-  const Row dL = e.transpose() * De / L;
-  const auto apex = [&](const V3& N, const J& dN, V3& g, J& dg) {
+  const M3 Se = skew(e), Sa = skew(a), Sb = skew(b);
+  // Per particle k = 0..3, the 3 x 3 blocks d N / d x_k (dN1 = -[a]x de + [e]x da, dN2 = -[e]x db + [b]x de with
+  // de = dx1 - dx0, da = dx2 - dx0, db = dx3 - dx0) and the rows d L / d x_k, d s / d x_k.
+  const std::array<M3, 4> dN1 = {Sa - Se, -Sa, Se, M3::Zero()}, dN2 = {Se - Sb, Sb, M3::Zero(), -Se};
+  const std::array<R3, 4> dL = {-e.transpose() / L, e.transpose() / L, R3::Zero(), R3::Zero()};
+  const auto foot_rows = [&](const V3& c, int apex) {  // d s / d x_k for the apex at x0 + c
+    const double t = 2 * c.dot(e) / (e2 * e2);
+    std::array<R3, 4> ds = {(-e - c).transpose() / e2 + t * e.transpose(), c.transpose() / e2 - t * e.transpose(),
+                            R3::Zero(), R3::Zero()};
+    ds[static_cast<std::size_t>(apex)] = e.transpose() / e2;
+    return ds;
+  };
+  const std::array<R3, 4> ds2 = foot_rows(a, 2), ds3 = foot_rows(b, 3);
+  // An apex term g = -L N / |N|^2 and its blocks dg_k = -(N / |N|^2) dL_k - (L / |N|^2) (I - 2 N N^T / |N|^2) dN_k.
+  const auto apex = [&](const V3& N, const std::array<M3, 4>& dN, V3& g, std::array<M3, 4>& dg) {
     const double q = N.squaredNorm();
     g = -L / q * N;
-    dg = -(N / q) * dL - (L / q) * (I - 2 / q * N * N.transpose()) * dN;
+    const M3 P = (L / q) * (I - 2 / q * N * N.transpose());
+    for (std::size_t k = 0; k < 4; ++k) dg[k] = -(N / q) * dL[k] - P * dN[k];
   };
   V3 g2, g3;
-  J dg2, dg3;
-  apex(e.cross(a), -skew(a) * De + skew(e) * Da, g2, dg2);
-  apex(b.cross(e), -skew(e) * Db + skew(b) * De, g3, dg3);
+  std::array<M3, 4> dg2, dg3;
+  apex(e.cross(a), dN1, g2, dg2);
+  apex(b.cross(e), dN2, g3, dg3);
   const double s2 = a.dot(e) / e2, s3 = b.dot(e) / e2;
-  const Row ds2 = (e.transpose() * Da + a.transpose() * De) / e2 - 2 * a.dot(e) / (e2 * e2) * e.transpose() * De;
-  const Row ds3 = (e.transpose() * Db + b.transpose() * De) / e2 - 2 * b.dot(e) / (e2 * e2) * e.transpose() * De;
   Matrix12 H;
-  H.middleRows<3>(0) = g2 * ds2 - (1 - s2) * dg2 + g3 * ds3 - (1 - s3) * dg3;
-  H.middleRows<3>(3) = -g2 * ds2 - s2 * dg2 - g3 * ds3 - s3 * dg3;
-  H.middleRows<3>(6) = dg2;
-  H.middleRows<3>(9) = dg3;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto c = static_cast<Eigen::Index>(3 * k);
+    H.block<3, 3>(0, c) = g2 * ds2[k] - (1 - s2) * dg2[k] + g3 * ds3[k] - (1 - s3) * dg3[k];
+    H.block<3, 3>(3, c) = -g2 * ds2[k] - s2 * dg2[k] - g3 * ds3[k] - s3 * dg3[k];
+    H.block<3, 3>(6, c) = dg2[k];
+    H.block<3, 3>(9, c) = dg3[k];
+  }
   return 0.5 * (H + H.transpose());  // symmetric up to rounding; made exactly so for the factorizations
 }
 // [hinge_hessian]
