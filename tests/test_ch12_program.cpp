@@ -1,14 +1,20 @@
 // ch12_bending end to end: one strip's run.txt holds what a reader needs to check it against an elastica of their
 // own, and its numbers agree with cloth::heavy_elastica computed here; --grid and --pins are refused for the
-// cantilever with status 2 and nothing written; a strip that is not a whole number of spacings is refused.
+// cantilever with status 2 and nothing written; a strip that is not a whole number of spacings is refused; SIGINT
+// during the rest-shape search stops it within a second, keeps the shape reached, and exits 130.
 #include <doctest/doctest.h>
 
 #ifdef CLOTH_HAVE_CH12_BENDING
 
 #include "analysis/elastica.hpp"
+#include "process.hpp"
 #include "program_runner.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <csignal>
+#include <thread>
 #include <map>
 #include <sstream>
 #include <string>
@@ -59,6 +65,30 @@ TEST_CASE("ch12_bending: --grid and --pins are refused for the cantilever, and a
     CHECK(run.err.find(args[0]) != std::string::npos);
     CHECK(!fs::exists(folder.cwd() / "run"));
   }
+}
+
+TEST_CASE("ch12_bending: SIGINT during the rest-shape search ends it within a second, keeps the shape, exits 130") {
+  // The flexion strip at L/80: Newton's method takes many seconds on it (the page says why), so the signal lands
+  // inside the search.
+  const ProgramFolder folder;
+  const Child child = spawn_chapter("ch12_bending", {"--bending", "flexion", "--overhang", "0.1", "--spacing",
+                                                     "0.00125", "--mass", "3.125e-7", "--out", "out"}, folder.cwd());
+  REQUIRE(wait_until_exists(child, folder.cwd() / "out"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const auto signalled = std::chrono::steady_clock::now();
+  ::kill(child.pid, SIGINT);
+  const int status = wait_for(child, 60);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+  const std::string err = read_text(child.err);
+  CAPTURE(err);
+  CHECK(status == 130);
+  CHECK(seconds < 1.0);
+  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+  CHECK(err.find("SIGINT") != std::string::npos);
+  auto kv = key_values(read_text(folder.cwd() / "out" / "run.txt"));
+  CHECK(kv["status"] == "interrupted");
+  CHECK(std::stoi(kv["iterations"]) >= 1);
+  CHECK(data_lines(folder.cwd() / "out" / "final.dat").size() == 82u * 21u);
 }
 
 #endif

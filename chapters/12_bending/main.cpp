@@ -1,6 +1,7 @@
 // Chapter 12: bending that holds a shape. One strip in the cantilever test of textile laboratories, clamped level
 // and bent by its own weight, with a chosen bending model; its rest shape against the heavy elastica. With
-// --report-runs, the chapter's figures and tables (report.cpp).
+// --report-runs, the chapter's figures and tables (report.cpp, cost.cpp); with --drape-runs, the curtain with and
+// without bending (drape.cpp).
 #include "report.hpp"
 
 #include "analysis/cantilever.hpp"
@@ -96,25 +97,18 @@ int single_strip(const CantileverParams& params, const std::string& dir, const s
 
 int main(int argc, char** argv) {
   CantileverParams params;
-  bool report = false, full = false;
+  bool report = false, full = false, drape = false;
   CommandLine cli("ch12_bending",
                   "Chapter 12: a strip in the cantilever test, clamped level and bent by its own weight, with a\n"
                   "bending model; its rest shape against the heavy elastica.");
-  cli.use_common({"--grid", "--spacing", "--mass", "--K", "--pins", "--out"});
+  cli.use_common({"--grid", "--spacing", "--mass", "--K", "--pins", "--bending", "--bending-rigidity", "--out"});
   cli.set_default("--spacing", "0.0025");
   cli.set_default("--mass", "1.25e-6");
   cli.set_default("--K", "1e4");
+  cli.set_default("--bending", "hinge");
   cli.add_value("--scene", "cantilever", "the scene: the cantilever strip (the only one)", [](const std::string& s) {
     if (s != "cantilever") throw InputError("unknown scene '" + s + "': expected cantilever");
   });
-  cli.add_value("--bending", bending_models().accepted("|"),
-                "how the sheet resists bending: hinge (default), quadratic, or the flexion springs",
-                [&](const std::string& s) { params.model = bending_models().parse(s); });
-  cli.add_value("--bending-rigidity", "B", "bending rigidity [N m], > 0 (default 5e-6)", [&](const std::string& s) {
-    params.bending_rigidity = parse_number(s);
-    if (!(params.bending_rigidity > 0)) throw InputError("expected a number > 0, got " + s);
-  });
-  params.bending_rigidity = 5e-6;
   params.overhang = 0.05;
   cli.add_value("--overhang", "L", "length of the strip beyond the clamp [m], a whole number of spacings "
                                    "(default 0.05)", [&](const std::string& s) {
@@ -123,6 +117,8 @@ int main(int argc, char** argv) {
   });
   cli.add_switch("--report-runs", "the chapter's figures and tables: shapes, convergence, fabrics, cost",
                  [&] { report = true; });
+  cli.add_switch("--drape-runs", "the curtain of Chapter 10 hanging with and without bending, and its cost",
+                 [&] { drape = true; });
   cli.add_switch("--full", "with --report-runs: the convergence study down to L/160 (slower)", [&] { full = true; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
@@ -131,6 +127,13 @@ int main(int argc, char** argv) {
     params.spacing = opt.scene.grid.d;
     params.areal_density = opt.scene.mass / (params.spacing * params.spacing);
     params.stiffness = opt.scene.stiffness;
+    params.model = opt.scene.bending;
+    params.bending_rigidity = opt.scene.bending_rigidity;
+    if (report && drape) throw InputError("--drape-runs: expected either --report-runs or --drape-runs, not both");
+    if (drape) {
+      prepare_outputs(opt.run.out_dir, drape_outputs(), single_outputs());
+      return drape_runs(opt.run.out_dir, reader_command(argc, argv));
+    }
     if (report) {
       prepare_outputs(opt.run.out_dir, report_outputs(), single_outputs());
       return report_runs(opt.run.out_dir, full, reader_command(argc, argv));

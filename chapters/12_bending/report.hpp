@@ -3,6 +3,7 @@
 // fabrics, and what bending costs beside the springs.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,3 +13,18 @@ std::vector<std::string> report_outputs();
 /// Writes them into `dir`; `full` refines the convergence study further. `command` is the line under each table.
 /// Returns the exit status (0).
 int report_runs(const std::string& dir, bool full, const std::string& command);
+
+/// The parts of report_runs in cost.cpp: cost.md (one evaluation of each term) and stable_step.md (the fastest
+/// bending mode against the springs' as the spacing halves).
+void write_cost(const std::string& dir, const std::string& command);
+void write_stable_step(const std::string& dir, const std::string& command);
+
+/// The median over 5 repetitions of the mean time of 5 calls of `work` [s].
+double median_seconds(const std::function<void()>& work);
+
+/// The files `--drape-runs` writes, for prepare_outputs.
+std::vector<std::string> drape_outputs();
+
+/// The curtain of Chapter 10 hanging with and without bending (drape.cpp): the hem's shape, the sheet's
+/// curvature over time, and what the bending term costs per step. Returns the exit status (0).
+int drape_runs(const std::string& dir, const std::string& command);

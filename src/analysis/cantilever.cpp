@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace cloth {
 
@@ -58,14 +59,16 @@ SceneParams cantilever_scene(const CantileverParams& p) {
   } else {
     s.families = FamilySet::all();
     s.families.on[static_cast<int>(SpringFamily::flexion)] = false;
+    s.bending = p.model;
+    s.bending_rigidity = p.bending_rigidity;
+    s.bending_split = p.split;
   }
   return s;
 }
 
 Cantilever::Cantilever(const CantileverParams& params)
     : params_(params), scene_(std::make_unique<Scene>(cantilever_scene(params))) {
-  springs_ = std::make_unique<ForceField>(*scene_);
-  bending_ = std::make_unique<BendingEnergy>(*scene_, params.model, params.bending_rigidity, params.split);
+  field_ = std::make_unique<ForceField>(*scene_);
   const Grid& g = scene_->grid();
   masses_.resize(scene_->free_count());
   for (int s = 0; s < scene_->free_count(); ++s) {
@@ -80,12 +83,11 @@ Cantilever::Cantilever(const CantileverParams& params)
 double Cantilever::energy(const ConstVectorRef& x) {
   double gravity = 0;
   for (int s = 0; s < scene_->free_count(); ++s) gravity += masses_[s] * params_.gravity * x[3 * s + 2];
-  return springs_->energy(x, zero_velocity_).spring + bending_->energy(x) + gravity;
+  return field_->energy(x, zero_velocity_).spring + gravity;  // springs and bending
 }
 
 void Cantilever::forces(const ConstVectorRef& x, VectorRef f) {
-  springs_->forces(x, zero_velocity_, f);
-  bending_->add_forces(x, f);
+  field_->forces(x, zero_velocity_, f);  // springs and bending
   for (int s = 0; s < scene_->free_count(); ++s) f[3 * s + 2] -= masses_[s] * params_.gravity;
 }
 
@@ -126,11 +128,15 @@ CantileverRest Cantilever::rest_shape(CantileverStart start, double tolerance, i
   CantileverRest rest;
   rest.x = start == CantileverStart::elastica ? elastica_layout() : scene_->initial_positions();
   rest.weight = params_.areal_density * params_.spacing * params_.spacing * params_.gravity;
-  SparseMatrix dfdx = springs_->pattern(), dfdv = springs_->pattern();
+  // One pattern for every matrix of the search (springs and hinges, ForceField::pattern()), analysed once:
+  // each iteration refills values in place.
+  SparseMatrix A = field_->pattern(), dfdv = field_->pattern();
+  std::vector<int> diagonal(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) diagonal[static_cast<std::size_t>(k)] = static_cast<int>(&A.coeffRef(k, k) - A.valuePtr());
   Vector f(n), f_trial(n), x_trial(n), dx(n), mass_diagonal(n);
   for (int k = 0; k < n; ++k) mass_diagonal[k] = masses_[k / 3];
   Eigen::SimplicialLDLT<SparseMatrix> solver;
-  bool analysed = false;
+  solver.analyzePattern(A);
   double E = energy(rest.x);
   forces(rest.x, f);
   // The force a spring's rounding leaves, 64 eps K 2d: a very light strip's weight may be below it.
@@ -145,22 +151,18 @@ CantileverRest Cantilever::rest_shape(CantileverStart start, double tolerance, i
       break;
     }
     // [newton_step]
-    springs_->jacobians(rest.x, zero_velocity_, dfdx, dfdv);
-    // Hessian of the energy: the springs' -df/dx and the bending Hessian; plus M / tau^2.
-    SparseMatrix A = -dfdx + bending_->hessian(rest.x, false);
-    A.diagonal() += mass_diagonal / (tau * tau);
-    if (!analysed) {
-      solver.analyzePattern(A);
-      analysed = true;
-    }
+    // Hessian of the energy, -df/dx (springs and bending), plus M / tau^2.
+    field_->jacobians(rest.x, zero_velocity_, A, dfdv);
+    A.coeffs() *= -1;
+    for (int k = 0; k < n; ++k) A.valuePtr()[diagonal[static_cast<std::size_t>(k)]] += mass_diagonal[k] / (tau * tau);
     solver.factorize(A);
     bool definite = solver.info() == Eigen::Success && solver.vectorD().minCoeff() > 0;
     if (!definite) {
       // Compressed springs (the inside of a bend of flexion springs) and hinges folded past their inflection make
-      // the exact Hessian indefinite: their definite parts (Choi & Ko 2002 for the springs) give a descent
-      // direction instead. newton_matrix is M - tau^2 df/dx with the scene's uniform masses.
-      springs_->newton_matrix(rest.x, zero_velocity_, tau, StiffnessTreatment::definite, dfdv);
-      A = dfdv / (tau * tau) + bending_->hessian(rest.x, true);
+      // the exact Hessian indefinite: their definite parts (Choi & Ko 2002 for the springs, Gauss-Newton for the
+      // hinges) give a descent direction instead. newton_matrix is M - tau^2 df/dx with the scene's uniform masses.
+      field_->newton_matrix(rest.x, zero_velocity_, tau, StiffnessTreatment::definite, A);
+      A.coeffs() /= tau * tau;
       solver.factorize(A);
       definite = solver.info() == Eigen::Success && solver.vectorD().minCoeff() > 0;
     }

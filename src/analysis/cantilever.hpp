@@ -92,8 +92,7 @@ class Cantilever {
  private:
   CantileverParams params_;
   std::unique_ptr<Scene> scene_;
-  std::unique_ptr<ForceField> springs_;
-  std::unique_ptr<BendingEnergy> bending_;
+  std::unique_ptr<ForceField> field_;  // springs and the bending term of the strip's model
   Vector masses_, zero_velocity_, scratch_;
 };
 

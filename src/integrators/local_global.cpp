@@ -14,6 +14,8 @@
 // paper adds damping differently, as a velocity correction; this way the limit is the same as Newton's).
 #include "integrators/local_global.hpp"
 
+#include "model/bending.hpp"
+
 #include "base/input_error.hpp"
 
 #include <cmath>
@@ -83,6 +85,13 @@ bool LocalGlobal::step(double h, Vector& x, Vector& v) {
   // The inertial target y = x0 + h v0 + h^2 g, and the first iterate x = y (Liu et al.).
   y_ = x0_ + h * v.reshaped(3, n).transpose();
   y_.col(2).array() -= h2 * scene.params().gravity;
+  // A bending term (Chapter 12) is not a spring of the global matrix: it enters the target as a force at x0,
+  // as gravity does, explicitly.
+  if (BendingEnergy* bending = field_.bending()) {
+    bending_force_.setZero(x.size());
+    bending->add_forces(x, bending_force_);
+    y_ += (h2 / m) * bending_force_.reshaped(3, n).transpose();
+  }
   X_ = y_;
 
   // A particle's position and velocity at the current iterate; a pinned one is at rest.

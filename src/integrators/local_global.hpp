@@ -34,6 +34,7 @@ class LocalGlobal final : public Stepper {
   Coordinates y_;            // the inertial target M y = M (x0 + h v0 + h^2 g)
   Coordinates b_, X_, scratch_;
   Coordinates x0_;
+  Vector bending_force_;  // the bending term's force at the step's start, when the scene has one
 };
 
 }  // namespace cloth

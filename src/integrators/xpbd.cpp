@@ -43,6 +43,8 @@
 // average, order-free and parallel, but it converges more slowly and overshoots without relaxation.
 #include "integrators/xpbd.hpp"
 
+#include "model/bending.hpp"
+
 #include "base/input_error.hpp"
 
 #include <algorithm>
@@ -66,6 +68,7 @@ Xpbd::Xpbd(ForceField& field, std::string name, int iterations, int substeps)
   previous_ = X_;
   V_.setZero(3, slots);
   lambda_.assign(scene.springs().springs.size(), 0.0);
+  if (field.bending() != nullptr) bending_force_.setZero(3 * free_count_);
 }
 
 bool Xpbd::step(double h, Vector& x, Vector& v) {
@@ -87,6 +90,13 @@ void Xpbd::substep(double s) {
   // (Macklin et al. 2016, Algorithm 1). lambda starts at 0 in every substep.
   previous_.leftCols(n) = X_.leftCols(n);
   V_.row(2).head(n).array() -= s * scene.params().gravity;
+  // A bending term (Chapter 12) is no distance constraint: it enters the prediction as a force at x^n, as
+  // gravity does, explicitly.
+  if (BendingEnergy* bending = field_.bending()) {
+    bending_force_.setZero();
+    bending->add_forces(Eigen::Map<const Vector>(X_.data(), 3 * n), bending_force_);
+    V_.leftCols(n) += (s * inverse_mass_) * bending_force_.reshaped(3, n);
+  }
   X_.leftCols(n) += s * V_.leftCols(n);
   std::fill(lambda_.begin(), lambda_.end(), 0.0);
   for (int it = 0; it < iterations_; ++it) {

@@ -71,6 +71,7 @@ class Xpbd final : public Stepper {
   Slots previous_;  // x^n, the positions at the start of the substep
   Slots V_;         // velocities of the free slots (the pinned tail stays 0)
   std::vector<double> lambda_;  // each spring's multiplier, summed over the substep's iterations
+  Vector bending_force_;        // the bending term's force at the substep's start, when the scene has one
   const ContactModel* contact_ = nullptr;
 };
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -134,7 +135,7 @@ double hinge_angle(const Vector12& x) {
 
 Vector12 hinge_angle_gradient(const Vector12& x) { return angle_gradient<double>(x); }
 
-Matrix12 hinge_angle_hessian(const Vector12& x) {
+Matrix12 hinge_angle_hessian_forward_mode(const Vector12& x) {
   using Dual = Eigen::AutoDiffScalar<Vector12>;
   Eigen::Matrix<Dual, 12, 1> ad;
   for (int k = 0; k < 12; ++k) ad[k] = Dual(x[k], 12, k);
@@ -143,6 +144,62 @@ Matrix12 hinge_angle_hessian(const Vector12& x) {
   for (int k = 0; k < 12; ++k) H.row(k) = g[k].derivatives().transpose();
   return 0.5 * (H + H.transpose());  // symmetric up to rounding; made exactly so for the factorizations
 }
+
+// [hinge_hessian]
+// The derivative of angle_gradient's formula, term by term. With e = x1 - x0, a = x2 - x0, b = x3 - x0 and
+// L = |e|: an apex term g = -L N / |N|^2 changes by dg = -(N / |N|^2) dL - (L / |N|^2) (I - 2 N N^T / |N|^2) dN,
+// where dL = e^T de / L, dN1 = d(e x a) = -[a]x de + [e]x da and dN2 = d(b x e) = -[e]x db + [b]x de ([v]x w is
+// v x w); the feet s = (a . e) / |e|^2 change by ds = (e^T da + a^T de) / |e|^2 - 2 (a . e) e^T de / |e|^4. The
+// edge terms g0 = -(1 - s2) g2 - (1 - s3) g3 and g1 = -s2 g2 - s3 g3 then follow by the product rule. Every
+// piece is a 3 x 3 block or a 1 x 3 row per particle, and the zero ones are never multiplied.
+Matrix12 hinge_angle_hessian(const Vector12& x) {
+  using V3 = Eigen::Vector3d;
+  using M3 = Eigen::Matrix3d;
+  using R3 = Eigen::RowVector3d;
+  const V3 x0 = x.segment<3>(0), e = x.segment<3>(3) - x0, a = x.segment<3>(6) - x0, b = x.segment<3>(9) - x0;
+  const double e2 = e.squaredNorm(), L = std::sqrt(e2);
+  const M3 I = M3::Identity();
+  const auto skew = [](const V3& v) {
+    M3 S;
+    S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return S;
+  };
+  const M3 Se = skew(e), Sa = skew(a), Sb = skew(b);
+  // Per particle k = 0..3, the 3 x 3 blocks d N / d x_k (dN1 = -[a]x de + [e]x da, dN2 = -[e]x db + [b]x de with
+  // de = dx1 - dx0, da = dx2 - dx0, db = dx3 - dx0) and the rows d L / d x_k, d s / d x_k.
+  const std::array<M3, 4> dN1 = {Sa - Se, -Sa, Se, M3::Zero()}, dN2 = {Se - Sb, Sb, M3::Zero(), -Se};
+  const std::array<R3, 4> dL = {-e.transpose() / L, e.transpose() / L, R3::Zero(), R3::Zero()};
+  const auto foot_rows = [&](const V3& c, int apex) {  // d s / d x_k for the apex at x0 + c
+    const double t = 2 * c.dot(e) / (e2 * e2);
+    std::array<R3, 4> ds = {(-e - c).transpose() / e2 + t * e.transpose(), c.transpose() / e2 - t * e.transpose(),
+                            R3::Zero(), R3::Zero()};
+    ds[static_cast<std::size_t>(apex)] = e.transpose() / e2;
+    return ds;
+  };
+  const std::array<R3, 4> ds2 = foot_rows(a, 2), ds3 = foot_rows(b, 3);
+  // An apex term g = -L N / |N|^2 and its blocks dg_k = -(N / |N|^2) dL_k - (L / |N|^2) (I - 2 N N^T / |N|^2) dN_k.
+  const auto apex = [&](const V3& N, const std::array<M3, 4>& dN, V3& g, std::array<M3, 4>& dg) {
+    const double q = N.squaredNorm();
+    g = -L / q * N;
+    const M3 P = (L / q) * (I - 2 / q * N * N.transpose());
+    for (std::size_t k = 0; k < 4; ++k) dg[k] = -(N / q) * dL[k] - P * dN[k];
+  };
+  V3 g2, g3;
+  std::array<M3, 4> dg2, dg3;
+  apex(e.cross(a), dN1, g2, dg2);
+  apex(b.cross(e), dN2, g3, dg3);
+  const double s2 = a.dot(e) / e2, s3 = b.dot(e) / e2;
+  Matrix12 H;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto c = static_cast<Eigen::Index>(3 * k);
+    H.block<3, 3>(0, c) = g2 * ds2[k] - (1 - s2) * dg2[k] + g3 * ds3[k] - (1 - s3) * dg3[k];
+    H.block<3, 3>(3, c) = -g2 * ds2[k] - s2 * dg2[k] - g3 * ds3[k] - s3 * dg3[k];
+    H.block<3, 3>(6, c) = dg2[k];
+    H.block<3, 3>(9, c) = dg3[k];
+  }
+  return 0.5 * (H + H.transpose());  // symmetric up to rounding; made exactly so for the factorizations
+}
+// [hinge_hessian]
 
 BendingEnergy::BendingEnergy(const Scene& scene, BendingModel model, double bending_rigidity, GridSplit split)
     : scene_(scene), model_(model), B_(bending_rigidity), all_(3 * scene.particle_count()) {
@@ -205,21 +262,18 @@ void BendingEnergy::add_forces(const ConstVectorRef& x, VectorRef f) {
   }
 }
 
-void BendingEnergy::build_pattern() {
-  const int n = scene_.dof_count();
-  std::vector<Eigen::Triplet<double>> entries;
+void BendingEnergy::add_pattern_blocks(std::vector<Eigen::Triplet<double>>& triplets) const {
   for (const Hinge& h : hinges_)
     for (int a : h.particle)
       for (int b : h.particle) {
         const int sa = scene_.slot(a), sb = scene_.slot(b);
         if (sa >= scene_.free_count() || sb >= scene_.free_count()) continue;
         for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) entries.emplace_back(3 * sa + r, 3 * sb + c, 0.0);
+          for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * sa + r, 3 * sb + c, 0.0);
       }
-  pattern_.resize(n, n);
-  pattern_.setFromTriplets(entries.begin(), entries.end());
-  pattern_.makeCompressed();
-  pattern_.coeffs().setZero();
+}
+
+void BendingEnergy::bind(const SparseMatrix& pattern) {
   block_start_.resize(hinges_.size());
   for (std::size_t k = 0; k < hinges_.size(); ++k)
     for (int a = 0; a < 4; ++a)
@@ -229,18 +283,48 @@ void BendingEnergy::build_pattern() {
           int& start = block_start_[k][(4 * a + b) * 3 + c];
           start = -1;
           if (sa >= scene_.free_count() || sb >= scene_.free_count()) continue;
+          // Rows are sorted within a column: the block's first row by bisection.
           const int column = 3 * sb + c;
-          for (int p = pattern_.outerIndexPtr()[column]; p < pattern_.outerIndexPtr()[column + 1]; ++p)
-            if (pattern_.innerIndexPtr()[p] == 3 * sa) start = p;
+          const int* rows = pattern.innerIndexPtr();
+          const int* first = rows + pattern.outerIndexPtr()[column];
+          const int* last = rows + pattern.outerIndexPtr()[column + 1];
+          const int* found = std::lower_bound(first, last, 3 * sa);
+          if (found == last || *found != 3 * sa)
+            throw std::logic_error("BendingEnergy::bind: the pattern lacks a hinge block");
+          start = static_cast<int>(found - rows);
         }
-  H_ = pattern_;
+  // The quadratic model's Hessian does not depend on the positions: its values in this pattern, once.
+  constant_values_.clear();
+  if (model_ == BendingModel::quadratic) {
+    constant_values_.assign(static_cast<std::size_t>(pattern.nonZeros()), 0.0);
+    add_hinge_hessians(Vector(), false, 1.0, constant_values_.data());
+  }
 }
 
 const SparseMatrix& BendingEnergy::hessian(const ConstVectorRef& x, bool definite) {
-  if (block_start_.size() != hinges_.size() || pattern_.rows() != scene_.dof_count()) build_pattern();
-  scene_.all_positions(x, all_);
+  if (H_.rows() != scene_.dof_count()) {
+    std::vector<Eigen::Triplet<double>> triplets;
+    add_pattern_blocks(triplets);
+    H_.resize(scene_.dof_count(), scene_.dof_count());
+    H_.setFromTriplets(triplets.begin(), triplets.end());
+    H_.makeCompressed();
+    bind(H_);
+  }
   H_.coeffs().setZero();
-  double* values = H_.valuePtr();
+  add_hessian(x, definite, 1.0, H_.valuePtr());
+  return H_;
+}
+
+void BendingEnergy::add_hessian(const ConstVectorRef& x, bool definite, double scale, double* values) {
+  if (model_ == BendingModel::quadratic) {
+    for (std::size_t k = 0; k < constant_values_.size(); ++k) values[k] += scale * constant_values_[k];
+    return;
+  }
+  add_hinge_hessians(x, definite, scale, values);
+}
+
+void BendingEnergy::add_hinge_hessians(const ConstVectorRef& x, bool definite, double scale, double* values) {
+  if (model_ == BendingModel::hinge) scene_.all_positions(x, all_);
   for (std::size_t k = 0; k < hinges_.size(); ++k) {
     const Hinge& h = hinges_[k];
     Matrix12 He;
@@ -248,14 +332,15 @@ const SparseMatrix& BendingEnergy::hessian(const ConstVectorRef& x, bool definit
       // E = (B/2) shape theta^2: H = B shape (grad theta grad theta^T + theta d^2 theta).
       const Vector12 y = gather(h);
       const Vector12 g = hinge_angle_gradient(y);
-      He = B_ * h.shape * g * g.transpose();
-      if (!definite) He += B_ * h.shape * hinge_angle(y) * hinge_angle_hessian(y);
+      He = (scale * B_ * h.shape) * g * g.transpose();
+      if (!definite) He += (scale * B_ * h.shape * hinge_angle(y)) * hinge_angle_hessian(y);
     } else {
       // E = (B / 2A) |sum w_i x_i|^2: H = (B / A) w w^T (x) I3, the same at every x.
       He.setZero();
+      const double c = scale * B_ * h.weight_factor / h.area;
       for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b)
-          He.block<3, 3>(3 * a, 3 * b) = B_ * h.weight_factor / h.area * h.weight[a] * h.weight[b] * Eigen::Matrix3d::Identity();
+          He.block<3, 3>(3 * a, 3 * b).diagonal().setConstant(c * h.weight[a] * h.weight[b]);
     }
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
@@ -265,7 +350,6 @@ const SparseMatrix& BendingEnergy::hessian(const ConstVectorRef& x, bool definit
           for (int r = 0; r < 3; ++r) values[start + r] += He(3 * a + r, 3 * b + c);
         }
   }
-  return H_;
 }
 
 }  // namespace cloth

@@ -10,17 +10,11 @@
 #include "model/scene.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <array>
 #include <vector>
 
 namespace cloth {
-
-/// How a sheet resists bending.
-enum class BendingModel {
-  flexion,   ///< the flexion springs of the report (Chapter 10 maps B to their stiffness at one curvature)
-  hinge,     ///< E = (B/2) c theta^2 |e|^2 / A_e per interior edge: the dihedral angle theta (discrete shells)
-  quadratic  ///< E = (B/2) c |sum_i w_i x_i|^2 / A_e per interior edge: constant Hessian (isometric bending)
-};
 
 /// The models by name: flexion, hinge, quadratic.
 const NameTable<BendingModel>& bending_models();
@@ -45,12 +39,6 @@ struct Hinge {
   std::array<double, 4> weight{};
 };
 
-/// How each grid cell is cut into triangles.
-enum class GridSplit {
-  uniform,  ///< every cell along its diagonal from (i, j) to (i+1, j+1)
-  both      ///< both triangulations of the grid, each at half weight: the two diagonals' biases cancel
-};
-
 /// The splits by name: uniform, both.
 const NameTable<GridSplit>& grid_splits();
 
@@ -73,9 +61,15 @@ double hinge_angle(const Vector12& x);
 /// apices' positions along the edge (Bridson et al. 2003).
 Vector12 hinge_angle_gradient(const Vector12& x);
 
-/// d^2 theta / dx^2, the derivative of hinge_angle_gradient's formula taken in forward mode (Eigen's AutoDiff
-/// on the same formula, exact up to rounding; Tamstorf & Grinspun 2013 write it out in closed form).
+/// d^2 theta / dx^2 in closed form: hinge_angle_gradient's formula differentiated term by term (the apex terms'
+/// normals and lengths, the feet of the apices along the edge); Tamstorf & Grinspun 2013 derive an equivalent
+/// form from the normals' angles.
 Matrix12 hinge_angle_hessian(const Vector12& x);
+
+/// The same d^2 theta / dx^2 by forward-mode differentiation (Eigen's AutoDiff) of the gradient's formula: exact
+/// up to rounding and independent of the closed form's algebra, which the tests check against it; Chapter 12
+/// times the two.
+Matrix12 hinge_angle_hessian_forward_mode(const Vector12& x);
 
 /// The bending energy of a scene's sheet and its derivatives with respect to the free particles' positions.
 /// The flexion model has no hinges here: its energy is in the flexion springs of the ForceField. Owns the
@@ -92,23 +86,35 @@ class BendingEnergy {
   double energy(const ConstVectorRef& x);
   /// Adds the bending force -dE/dx to f.
   void add_forces(const ConstVectorRef& x, VectorRef f);
-  /// The Hessian d^2E/dx^2 refilled in place, in hessian_pattern(). `definite`: the hinge model keeps only its
+  /// The Hessian d^2E/dx^2 refilled in place, in its own pattern. `definite`: the hinge model keeps only its
   /// positive semi-definite part (B |e|^2 / A_e) grad theta grad theta^T (Gauss-Newton); the quadratic model's
   /// Hessian is constant and semi-definite already.
   const SparseMatrix& hessian(const ConstVectorRef& x, bool definite);
 
+  /// The 3x3 blocks (zeros) the Hessian fills, between the free particles of each hinge: a caller that holds the
+  /// Hessian inside a larger matrix (the ForceField's) puts them in its pattern, then calls bind() with it.
+  void add_pattern_blocks(std::vector<Eigen::Triplet<double>>& triplets) const;
+  /// Finds where every hinge block lies in `pattern`'s values (which must hold them), once per pattern.
+  void bind(const SparseMatrix& pattern);
+  /// values += scale d^2E/dx^2 (definite as for hessian()) in the values of the pattern last bound: allocates
+  /// nothing. The quadratic model's constant Hessian is assembled once, by bind(), and added as one array.
+  void add_hessian(const ConstVectorRef& x, bool definite, double scale, double* values);
+
  private:
   Vector12 gather(const Hinge& h) const;
-  void build_pattern();
+  // Every hinge's 12 x 12 Hessian, scaled, added block by block into the bound pattern's values (x is read by
+  // the hinge model only).
+  void add_hinge_hessians(const ConstVectorRef& x, bool definite, double scale, double* values);
   const Scene& scene_;
   BendingModel model_;
   double B_;
   std::vector<Hinge> hinges_;
   Vector all_;  // all particles' positions, grid order
-  SparseMatrix pattern_, H_;
+  SparseMatrix H_;  // hessian()'s own matrix, its pattern built at the first call
   // Per hinge, per block (a, b) of its 4 x 4 particles and per column c of the block: the value index of the
-  // block's first row in that column, or -1 when a or b is pinned.
+  // block's first row in that column of the pattern last bound, or -1 when a or b is pinned.
   std::vector<std::array<int, 48>> block_start_;
+  std::vector<double> constant_values_;  // the quadratic model's Hessian in the bound pattern's values
 };
 
 }  // namespace cloth

@@ -3,6 +3,8 @@
 // contiguously, branch on the damping law once per family (a template), and allocate nothing.
 #include "model/force_field.hpp"
 
+#include "model/bending.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <Eigen/Dense>
@@ -127,9 +129,16 @@ ForceField::ForceField(const Scene& scene)
       add_block(s.p, s.q);
       add_block(s.q, s.p);
     }
+  // A hinge couples its four particles: its apices lie two cells apart, beyond any spring.
+  if (scene.params().bending != BendingModel::flexion) {
+    bending_ = std::make_unique<BendingEnergy>(scene, scene.params().bending, scene.params().bending_rigidity,
+                                               scene.params().bending_split);
+    bending_->add_pattern_blocks(triplets);
+  }
   pattern_.resize(3 * n_free, 3 * n_free);
   pattern_.setFromTriplets(triplets.begin(), triplets.end());
   pattern_.makeCompressed();
+  if (bending_) bending_->bind(pattern_);
 
   // Rows of a block are consecutive in each of its columns, so a block is found by three column starts.
   const auto entry = [&](int row, int col) {
@@ -156,6 +165,8 @@ ForceField::ForceField(const Scene& scene)
     frozen_length_.assign(springs.size(), 0.0);
   }
 }
+
+ForceField::~ForceField() = default;
 
 void ForceField::scatter_state(const ConstVectorRef& x, const ConstVectorRef& v) {
   const int n = scene_.free_count();
@@ -219,6 +230,7 @@ void ForceField::forces(const ConstVectorRef& x, const ConstVectorRef& v, Vector
   spring_pass(false, nullptr);
   const int n = scene_.free_count();
   f.reshaped(3, n) = F_.topLeftCorner(3, n);
+  if (bending_) bending_->add_forces(x, f);
   if (scene_.has_gravity()) {
     const double weight = scene_.params().mass * scene_.params().gravity;
     for (int s = 0; s < n; ++s) f[3 * s + 2] -= weight;
@@ -246,6 +258,11 @@ ForceField::Potentials ForceField::frozen_forces(const ConstVectorRef& x, const 
   spring_pass(true, &potentials);
   const int n = scene_.free_count();
   f.reshaped(3, n) = F_.topLeftCorner(3, n);
+  if (bending_) {
+    bending_->add_forces(x, f);
+    potentials.spring += bending_->energy(x);
+    potentials.terms += static_cast<int>(bending_->hinges().size());
+  }
   if (scene_.has_gravity()) {
     const double weight = scene_.params().mass * scene_.params().gravity;
     for (int s = 0; s < n; ++s) f[3 * s + 2] -= weight;
@@ -276,6 +293,7 @@ Energy ForceField::energy(const ConstVectorRef& x, const ConstVectorRef& v) {
     }
     e.spring += 0.5 * scene_.stiffness(family) * sum;
   }
+  if (bending_) e.spring += bending_->energy(x);
   return e;
 }
 
@@ -357,6 +375,7 @@ void ForceField::jacobians(const ConstVectorRef& x, const ConstVectorRef& v, Spa
                           add_block(Jv, c[0], Bv, 1), add_block(Jv, c[1], Bv, 1);
                           add_block(Jv, c[2], Bv, -1), add_block(Jv, c[3], Bv, -1);
                         });
+  if (bending_) bending_->add_hessian(x, false, -1.0, Jx);  // df/dx = -d^2E_bending/dx^2
 }
 
 namespace {
@@ -444,23 +463,30 @@ void ForceField::newton_matrix(const ConstVectorRef& x, const ConstVectorRef& v,
   // Without damping, exact and symmetric are the same matrix; projected damping is symmetric once its d/dx goes.
   const bool lean = !scene_.has_damping() ||
                     (scene_.params().damping_model == DampingModel::projected && treatment != StiffnessTreatment::exact);
+  const bool definite = treatment == StiffnessTreatment::definite;
   if (lean) {
-    // Every off-diagonal block is assigned by its spring, so only the diagonal blocks are cleared.
-    for (const auto& start : diagonal_blocks_)
-      for (int b : start) std::fill_n(values + b, 3, 0.0);
+    // Every off-diagonal block is assigned by its spring, so only the diagonal blocks are cleared; a hinge's
+    // blocks between particles no spring joins are cleared with the rest.
+    if (bending_)
+      std::fill_n(values, A.nonZeros(), 0.0);
+    else
+      for (const auto& start : diagonal_blocks_)
+        for (int b : start) std::fill_n(values + b, 3, 0.0);
     for (int k : diagonal_entry_) values[k] = m;
-    refill_symmetric(h, treatment == StiffnessTreatment::definite, false, values);
-    return;
+    refill_symmetric(h, definite, false, values);
+  } else {
+    std::fill_n(values, A.nonZeros(), 0.0);
+    for (int k : diagonal_entry_) values[k] = m;
+    for_each_spring_block(treatment, [&](const SpringBlocks& blocks, const Eigen::Matrix3d& Bx, const Eigen::Matrix3d& Bv) {
+      // A = M - h df/dv - h^2 df/dx, block by block.
+      const Eigen::Matrix3d C = -h * Bv - (h * h) * Bx;
+      const auto& c = blocks.column_start;
+      add_block(values, c[0], C, 1), add_block(values, c[1], C, 1);
+      add_block(values, c[2], C, -1), add_block(values, c[3], C, -1);
+    });
   }
-  std::fill_n(values, A.nonZeros(), 0.0);
-  for (int k : diagonal_entry_) values[k] = m;
-  for_each_spring_block(treatment, [&](const SpringBlocks& blocks, const Eigen::Matrix3d& Bx, const Eigen::Matrix3d& Bv) {
-    // A = M - h df/dv - h^2 df/dx, block by block.
-    const Eigen::Matrix3d C = -h * Bv - (h * h) * Bx;
-    const auto& c = blocks.column_start;
-    add_block(values, c[0], C, 1), add_block(values, c[1], C, 1);
-    add_block(values, c[2], C, -1), add_block(values, c[3], C, -1);
-  });
+  // The bending term's h^2 d^2E/dx^2; definite keeps the hinge's Gauss-Newton part (model/bending.hpp).
+  if (bending_) bending_->add_hessian(x, definite, h * h, values);
 }
 
 void ForceField::frozen_newton_matrix(const ConstVectorRef& x, double h, StiffnessTreatment treatment,
@@ -469,10 +495,15 @@ void ForceField::frozen_newton_matrix(const ConstVectorRef& x, double h, Stiffne
   // refill, whatever the damping law: the Hessian of the incremental potential is symmetric.
   X_.topLeftCorner(3, scene_.free_count()) = x.reshaped(3, scene_.free_count());
   double* values = A.valuePtr();
-  for (const auto& start : diagonal_blocks_)
-    for (int b : start) std::fill_n(values + b, 3, 0.0);
+  if (bending_)
+    std::fill_n(values, A.nonZeros(), 0.0);
+  else
+    for (const auto& start : diagonal_blocks_)
+      for (int b : start) std::fill_n(values + b, 3, 0.0);
   for (int k : diagonal_entry_) values[k] = scene_.params().mass;
-  refill_symmetric(h, treatment == StiffnessTreatment::definite, scene_.has_damping(), values);
+  const bool definite = treatment == StiffnessTreatment::definite;
+  refill_symmetric(h, definite, scene_.has_damping(), values);
+  if (bending_) bending_->add_hessian(x, definite, h * h, values);
 }
 
 }  // namespace cloth

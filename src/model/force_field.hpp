@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
+#include <memory>
 #include <vector>
 
 namespace cloth {
@@ -21,7 +22,7 @@ using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major (CSC), full s
 struct Energy {
   double kinetic = 0;
   double gravity = 0;
-  double spring = 0;
+  double spring = 0;  ///< the elastic energy: the springs', plus the bending term's when the scene has one
   [[nodiscard]] double total() const { return kinetic + gravity + spring; }
 };
 
@@ -41,11 +42,16 @@ const NameTable<StiffnessTreatment>& stiffness_treatments();
 /// contributes nothing to the Jacobians (the guard for coincident particles, Chapter 7).
 inline constexpr double degenerate_length_fraction = 1e-12;
 
-/// Evaluates forces, energies and Jacobians of one scene. Owns the scratch space and the sparsity pattern, so
+class BendingEnergy;
+
+/// Evaluates forces, energies and Jacobians of one scene, the bending term of its `bending` model included. Owns the scratch space and the sparsity pattern, so
 /// nothing is allocated after construction. Not thread-safe: one ForceField per thread.
 class ForceField {
  public:
   explicit ForceField(const Scene& scene);
+  ~ForceField();
+  ForceField(const ForceField&) = delete;
+  ForceField& operator=(const ForceField&) = delete;
 
   [[nodiscard]] const Scene& scene() const { return scene_; }
   [[nodiscard]] int dof_count() const { return scene_.dof_count(); }
@@ -59,8 +65,14 @@ class ForceField {
   /// Kinetic, gravitational and spring energy of the state (pinned particles included, at rest).
   [[nodiscard]] Energy energy(const ConstVectorRef& x, const ConstVectorRef& v);
 
+  /// The scene's bending energy (hinge or quadratic, Chapter 12), or nullptr when its model is flexion: its
+  /// forces and Hessian are already in every force and matrix below; methods that do not use them (XPBD,
+  /// local/global) add its forces themselves.
+  [[nodiscard]] BendingEnergy* bending() { return bending_.get(); }
+
   /// An all-zero matrix with the sparsity pattern shared by df/dx, df/dv and the Newton matrix:
-  /// a 3x3 block per free particle and per spring joining two free particles.
+  /// a 3x3 block per free particle, per spring joining two free particles and, with a bending term, between
+  /// the free particles of each hinge.
   [[nodiscard]] const SparseMatrix& pattern() const { return pattern_; }
 
   /// The exact analytic Jacobians df/dx and df/dv, refilled in place (they must have pattern()'s pattern).
@@ -78,7 +90,7 @@ class ForceField {
 
   /// The two potentials of a state with frozen dampers, in joules and watts.
   struct Potentials {
-    double spring = 0;       ///< E_spring(x) = 1/2 sum K (l - L0)^2 [J]
+    double spring = 0;       ///< E_spring(x) = 1/2 sum K (l - L0)^2 [J], plus the bending energy if any
     double dissipation = 0;  ///< R(v), the dissipation potential of the frozen dampers [W]
     int terms = 0;           ///< how many nonnegative terms the two sums added (their rounding bound)
   };
@@ -122,6 +134,7 @@ class ForceField {
   std::vector<std::array<int, 3>> diagonal_blocks_;  // column starts of each free particle's diagonal block
   SlotMatrix frozen_direction_;        // u0 of every spring, (x, y, z, 0), when the scene is damped
   std::vector<double> frozen_length_;  // l0 of every spring, when the scene is damped
+  std::unique_ptr<BendingEnergy> bending_;  // the scene's hinges, when its model is hinge or quadratic
 };
 
 }  // namespace cloth

@@ -61,6 +61,8 @@ void validate(const SceneParams& p) {
     throw InputError("v0 = " + format_number(p.initial_velocity_z) + ": expected a finite number");
   if (!std::isfinite(p.initial_swing))
     throw InputError("swing = " + format_number(p.initial_swing) + ": expected a finite number");
+  if (p.bending != BendingModel::flexion && !(std::isfinite(p.bending_rigidity) && p.bending_rigidity > 0))
+    throw InputError("bending rigidity B = " + format_number(p.bending_rigidity) + ": expected a finite number > 0");
   if (!(std::isfinite(p.mass) && p.mass > 0))
     throw InputError("mass = " + format_number(p.mass) + ": expected a finite number > 0");
   if (!(std::isfinite(p.gravity) && p.gravity >= 0))

@@ -28,6 +28,19 @@ enum class PinSet {
   clamped   ///< the first two rows i = 0 and 1: the clamp of Chapter 12's cantilever, which also fixes the slope
 };
 
+/// How a sheet resists bending (Chapter 12).
+enum class BendingModel {
+  flexion,   ///< the flexion springs alone (the report's model; Chapter 10 maps B to their stiffness at one curvature)
+  hinge,     ///< E = (B/2) c theta^2 |e|^2 / A_e per interior edge: the dihedral angle theta (discrete shells)
+  quadratic  ///< E = (B/2) c |sum_i w_i x_i|^2 / A_e per interior edge: constant Hessian (isometric bending)
+};
+
+/// How each grid cell is cut into triangles.
+enum class GridSplit {
+  uniform,  ///< every cell along its diagonal from (i, j) to (i+1, j+1)
+  both      ///< both triangulations of the grid, each at half weight: the two diagonals' biases cancel
+};
+
 const char* damping_model_name(DampingModel model);
 const char* pin_set_name(PinSet pins);
 
@@ -46,6 +59,12 @@ struct SceneParams {
   /// w: the cloth starts turning rigidly about the line of the edge j = N-1 (y = (N-1) d, z = 0) at w rad/s, on top
   /// of v0; w > 0 lifts the far edge. Particle (i, j) gets the z velocity w (N-1-j) d (Chapter 10's swinging curtain).
   double initial_swing = 0.0;
+  /// The bending term: hinge and quadratic add an energy on the triangles' interior edges with rigidity
+  /// bending_rigidity to every force, energy and Jacobian of the ForceField; flexion adds nothing (the flexion
+  /// springs, when `families` has them, are then the only resistance to bending).
+  BendingModel bending = BendingModel::flexion;
+  double bending_rigidity = 5e-6;     ///< B [N m], used by the hinge and quadratic models
+  GridSplit bending_split = GridSplit::both;  ///< the triangles the hinge and quadratic energies live on
   double mass = 1.0;                  ///< m, the same for every particle [kg]
   double gravity = 9.81;              ///< g [m/s^2]; 0 removes the gravity term
   /// Where the grid rests (Chapter 11 lays a sheet on an inclined plane): particle (i, j) rests at

@@ -1,6 +1,8 @@
 // Strict parsing of the common command-line flags of the model page.
 #include "program/command_line.hpp"
 
+#include "model/bending.hpp"
+
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "base/text.hpp"
@@ -75,6 +77,9 @@ constexpr CommonFlag common_flags[] = {
     {"--springs", "LIST", "comma list of structural,shear,flexion", "all three"},
     {"--pins", "corners|corner|edge|none", "pinned particles", "corners"},
     {"--v0", "vz", "initial z velocity of free particles [m/s]", "-20"},
+    {"--bending", "flexion|hinge|quadratic",
+     "bending: the flexion springs alone, or a hinge or quadratic energy on the triangles (Chapter 12)", "flexion"},
+    {"--bending-rigidity", "B", "bending rigidity of the hinge and quadratic energies [N m], > 0", "5e-6"},
     {"--swing", "w", "initial turning rate about the edge j = N-1 [rad/s] (> 0 lifts the far edge)", "0"},
     {"--dt", "h", "time step [s], > 0", "0.01"},
     {"--t-end", "T", "simulated time [s], >= dt", "2"},
@@ -130,6 +135,8 @@ void set_common(Options& opt, std::string& grid_text, const std::string& flag, c
     else throw InputError("unknown pin set " + quoted(value) + ": expected corners, corner, edge or none");
   } else if (flag == "--v0") opt.scene.initial_velocity_z = parse_number(value);
   else if (flag == "--swing") opt.scene.initial_swing = parse_number(value);
+  else if (flag == "--bending") opt.scene.bending = bending_models().parse(value);
+  else if (flag == "--bending-rigidity") opt.scene.bending_rigidity = positive(value);
   else if (flag == "--dt") opt.run.dt = positive(value);
   else if (flag == "--t-end") opt.run.t_end = positive(value);
   else if (flag == "--frames") {
