@@ -14,7 +14,7 @@ if(CLOTH_WEB AND CLOTH_EMCMAKE AND NOT CLOTH_SANITIZE)
   add_custom_target(web
     COMMAND ${CMAKE_COMMAND} -E env NODE_PATH=/usr/share/nodejs
             ${CLOTH_EMCMAKE} ${CMAKE_COMMAND} -S ${PROJECT_SOURCE_DIR}/web -B ${CLOTH_WEB_DIR} -DCMAKE_BUILD_TYPE=Release
-    COMMAND ${CMAKE_COMMAND} -E env NODE_PATH=/usr/share/nodejs ${CMAKE_COMMAND} --build ${CLOTH_WEB_DIR}
+    COMMAND ${CMAKE_COMMAND} -E env NODE_PATH=/usr/share/nodejs ${CMAKE_COMMAND} --build ${CLOTH_WEB_DIR} -j2
     BYPRODUCTS ${CLOTH_WEB_MODULE}
     COMMENT "web: the core compiled to WebAssembly (Emscripten)"
     VERBATIM)

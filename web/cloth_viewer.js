@@ -9,8 +9,8 @@
 // is another name for `method`. With `autorun` the demo runs to the end at once and writes the final state in
 // final.dat's format into the element with id `final-state`, the line a stopped run prints (or "ok") into
 // `run-status` and the run's command line (ch10_cloth's flags) into `run-arguments`, so that a script can run
-// the native program on the same flags and compare (docs/check_demos.sh); `measure=N` writes the cost of one
-// step in seconds, timed over N steps from the initial state, into `step-cost`.
+// the native program on the same flags and compare (docs/check_demos.sh); `measure` first times the whole run as
+// the native program does (run.txt's wall_seconds / steps) and writes the seconds per step into `step-cost`.
 "use strict";
 
 (function () {
@@ -19,10 +19,10 @@
   // The flags given in the page's URL, as [flag, value] pairs, and the switches autorun and measure.
   function urlSettings() {
     const query = new URLSearchParams(window.location.search);
-    const settings = {flags: [], methods: null, autorun: query.has("autorun"), measure: 0};
+    const settings = {flags: [], methods: null, autorun: query.has("autorun"), measure: false};
     for (const [name, value] of query) {
       if (name === "autorun") continue;
-      if (name === "measure") settings.measure = parseInt(value, 10) || 0;
+      if (name === "measure") settings.measure = true;
       else if (name === "method" || name === "tableau") settings.methods = [value];
       else settings.flags.push(["--" + name, value]);
     }
@@ -333,10 +333,8 @@
           return;
         }
         if (!url.autorun || k > 0) return;
-        if (url.measure > 0 && demo.runs.length > 0) {
-          const seconds = demo.runs[0].run.secondsPerStep(url.measure);
-          outputElement("step-cost", root).textContent = String(seconds);
-        }
+        if (url.measure && demo.runs.length > 0)
+          outputElement("step-cost", root).textContent = String(demo.runs[0].run.secondsPerStep());
         demo.finish();
         outputElement("run-status", root).textContent =
             demo.error || (demo.runs.length > 0 ? (demo.runs[0].run.stopMessage() || "ok") : "no run");
