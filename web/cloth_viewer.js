@@ -73,11 +73,12 @@
     return modulePromise;
   }
 
-  // A view of the cloth from the front and a little above: the rest sheet lies in the plane z = 0 and gravity
-  // pulls along -z, so the picture's vertical is z, tilted by `tilt` about the x axis to show the depth y.
+  // An oblique view: the rest sheet lies in the plane z = 0 with gravity along -z, so the picture's axes are y
+  // (across) and z (up), and x, the depth, is drawn receding at half scale up and to the left, so that a sheet
+  // hung flat and one fallen vertical both show their area.
   function project(x, y, z) {
-    const tilt = 0.35;
-    return [y, z * Math.cos(tilt) - x * Math.sin(tilt)];
+    const angle = 0.6;
+    return [y - 0.5 * x * Math.cos(angle), z + 0.5 * x * Math.sin(angle)];
   }
 
   class Demo {
@@ -113,7 +114,8 @@
             input.appendChild(option);
           }
         } else {
-          input = element("input", {type: "text", size: "8", value: initial.get("--" + name) || ""});
+          input = element("input", {type: "text", size: "8", value: initial.get("--" + name) || "",
+                                    placeholder: "default"});
         }
         input.addEventListener("change", () => this.reset());
         label.appendChild(input);
@@ -160,7 +162,6 @@
         }
         this.runs.push({run, method, args, energy: [[0, run.energy()[3]]]});
       }
-      this.bounds = null;
       this.hMax = "";
       if (this.showHMax && this.runs.length > 0) {
         const h = this.runs[0].run.predictedHMax();
@@ -243,9 +244,10 @@
           xy[2 * q] = u;
           xy[2 * q + 1] = w;
         }
-        // The picture's scale grows to hold the cloth and never shrinks, so that a sag is seen as a sag.
-        if (!this.bounds) this.bounds = [Infinity, -Infinity, Infinity, -Infinity];
-        const b = this.bounds;
+        // Each cloth's picture scale grows to hold it and never shrinks, so that a sag is seen as a sag (and a
+        // cloth flying apart does not shrink its neighbour to a dot).
+        if (!r.bounds) r.bounds = [Infinity, -Infinity, Infinity, -Infinity];
+        const b = r.bounds;
         for (let q = 0; q < M * N; ++q) {
           b[0] = Math.min(b[0], xy[2 * q]); b[1] = Math.max(b[1], xy[2 * q]);
           b[2] = Math.min(b[2], xy[2 * q + 1]); b[3] = Math.max(b[3], xy[2 * q + 1]);
