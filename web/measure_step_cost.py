@@ -93,10 +93,13 @@ def main():
     cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
     chromium = subprocess.run(["chromium", "--version"], capture_output=True, text=True).stdout.strip()
     emcc = subprocess.run(["emcc", "--version"], capture_output=True, text=True).stdout.splitlines()[0]
-    provenance = (f'<div class="measured">Measured by <code>web/measure_step_cost.py --repeat {args.repeat}</code> on '
-                  f"{html.escape(cpu)}, {platform.system()}: native <code>ch10_cloth</code> of the book's build "
-                  f"(<code>-O3 -march=native -mno-avx512f -ffp-contract=off</code>), WebAssembly by "
-                  f"{html.escape(emcc.split('(')[0].strip())} <code>-O3</code> in {html.escape(chromium)}.")
+    emscripten = "Emscripten " + (re.findall(r"\) ([0-9.]+)", emcc) or ["?"])[0]
+    # Code in backticks, as the programs' fragments write it (src/program/fragment.cpp): Doxygen would print the
+    # dashes of a flag inside an HTML <code> as an en dash.
+    provenance = (f'<div class="measured">Measured by `web/measure_step_cost.py --repeat {args.repeat}` on '
+                  f"{html.escape(cpu)}, {platform.system()}: native `ch10_cloth` of the book's build, compiled by "
+                  f"GCC with `-O3 -march=native -mno-avx512f -ffp-contract=off -fno-math-errno` (AVX2, FMA); "
+                  f"WebAssembly by {emscripten} `-O3` in {html.escape(chromium)}.")
     folder = os.path.join(os.path.dirname(os.path.abspath(__file__)), "measured")
     os.makedirs(folder, exist_ok=True)
     tables = {
