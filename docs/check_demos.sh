@@ -92,5 +92,5 @@ EOF
     failures=$((failures + 1))
   fi
 done
-echo "check_demos: ${#cases[@]} runs, $failures disagreeing with the native program"
+echo "check_demos: ${#cases[@]} runs, $failures failed (no state written, or a state or stop unlike the native program's)"
 [ "$failures" = 0 ]
