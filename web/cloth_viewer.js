@@ -6,7 +6,7 @@
 //   data-controls  the flags the reader may change ("method K damping dt t-end")
 //   data-hmax      "yes": show the predicted largest stable step of the chosen explicit Runge-Kutta method
 // The page's URL may set any flag by its name without the dashes (ch03.html?method=rk4&K=200&dt=0.01); `tableau`
-// is another name for `method`. With `autorun` the demo runs to the end at once and writes the final state in
+// is another name for `method`; `play` starts the animation at once. With `autorun` the demo runs to the end at once and writes the final state in
 // final.dat's format into the element with id `final-state`, the line a stopped run prints (or "ok") into
 // `run-status` and the run's command line (ch10_cloth's flags) into `run-arguments`, so that a script can run
 // the native program on the same flags and compare (docs/check_demos.sh); `measure` first times the whole run as
@@ -19,9 +19,9 @@
   // The flags given in the page's URL, as [flag, value] pairs, and the switches autorun and measure.
   function urlSettings() {
     const query = new URLSearchParams(window.location.search);
-    const settings = {flags: [], methods: null, autorun: query.has("autorun"), measure: false};
+    const settings = {flags: [], methods: null, autorun: query.has("autorun"), play: query.has("play"), measure: false};
     for (const [name, value] of query) {
-      if (name === "autorun") continue;
+      if (name === "autorun" || name === "play") continue;
       if (name === "measure") settings.measure = true;
       else if (name === "method" || name === "tableau") settings.methods = [value];
       else settings.flags.push(["--" + name, value]);
@@ -334,6 +334,7 @@
           if (url.autorun) outputElement("final-state", document.body).textContent = "error: " + e;
           return;
         }
+        if (url.play && !url.autorun) demo.play();
         if (!url.autorun || k > 0) return;
         if (url.measure && demo.runs.length > 0)
           outputElement("step-cost", root).textContent = String(demo.runs[0].run.secondsPerStep());
