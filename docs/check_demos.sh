@@ -28,8 +28,9 @@ tolerance=1e-9
 
 # Each case: a page and the flags of its run, a fixed number of steps each (t-end / dt), the method by name. The
 # second RK4 case diverges: the browser must stop at the same step with the program's message. The report cloth's
-# fall (v0 = -20 m/s) amplifies a difference of rounding about 1e5-fold between t = 0.6 and 0.8 s, whatever the
-# method and step (the appendix "The book in the browser" shows it), so its runs stop before that.
+# fall (v0 = -20 m/s, K = 200, D = 20) amplifies a difference of rounding about 1e5-fold between t = 0.6 and
+# 0.8 s for RK4 at either step measured (the appendix "The book in the browser" shows it), so its RK4 run stops
+# before that.
 cases=(
   "ch02.html?method=explicit_euler&K=50&dt=0.01&t-end=1"
   "ch02.html?method=symplectic_euler&K=200&dt=0.01&t-end=1"
