@@ -28,19 +28,24 @@ set(CLOTH_DOCS_DIR ${CMAKE_BINARY_DIR}/docs)
 configure_file(${PROJECT_SOURCE_DIR}/docs/Doxyfile.in ${CLOTH_DOCS_DIR}/Doxyfile @ONLY)
 file(GLOB_RECURSE CLOTH_DOC_INPUTS CONFIGURE_DEPENDS
   ${PROJECT_SOURCE_DIR}/docs/*.md ${PROJECT_SOURCE_DIR}/chapters/*.md ${PROJECT_SOURCE_DIR}/chapters/*.cpp
-  ${PROJECT_SOURCE_DIR}/src/*.hpp ${PROJECT_SOURCE_DIR}/src/*.cpp)
+  ${PROJECT_SOURCE_DIR}/src/*.hpp ${PROJECT_SOURCE_DIR}/src/*.cpp ${PROJECT_SOURCE_DIR}/web/*.js)
 
 add_custom_target(docs
   COMMAND ${CMAKE_COMMAND} -E rm -rf ${CLOTH_DOCS_DIR}/html
   COMMAND ${DOXYGEN_EXECUTABLE} ${CLOTH_DOCS_DIR}/Doxyfile
   # A copy, not a link, so the html folder can be moved or served and still render formulas offline.
   COMMAND ${CMAKE_COMMAND} -E copy_directory ${CLOTH_MATHJAX_DIR} ${CLOTH_DOCS_DIR}/html/mathjax
+  # The live demos' module, when it was built (cmake/Web.cmake); the pages load it from beside themselves.
+  COMMAND ${CMAKE_COMMAND} -E $<IF:$<BOOL:${CLOTH_WEB_MODULE}>,copy,true> ${CLOTH_WEB_MODULE} ${CLOTH_DOCS_DIR}/html/
   COMMAND ${CMAKE_COMMAND} -E echo "book: ${CLOTH_DOCS_DIR}/html/index.html"
   DEPENDS ${CLOTH_DOC_INPUTS}
   WORKING_DIRECTORY ${CLOTH_DOCS_DIR}
   COMMENT "docs: Doxygen"
   VERBATIM)
 add_dependencies(docs plots)
+if(CLOTH_WEB_MODULE)
+  add_dependencies(docs web)
+endif()
 
 # The browser check of the book (docs/check_book.sh): every page opened in headless Chromium, failing on a formula
 # error, a missing image, a broken link or a figure or table wider than the page. It builds the book first.

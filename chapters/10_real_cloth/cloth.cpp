@@ -23,19 +23,6 @@ using namespace cloth;
 
 namespace {
 
-// The method --method names, with the settings its own flags chose; the flags of another kind of method refused.
-MethodSettings settings_of(const Method& method, const Scene& scene, const NewtonFlags& newton,
-                           const IterationFlags& iterations) {
-  MethodSettings settings;
-  const std::vector<const Method*> implicit = newton_methods();
-  if (std::find(implicit.begin(), implicit.end(), &method) != implicit.end())
-    settings.newton = newton.settings_for(scene);
-  else if (!newton.first_given().empty())
-    throw InputError(newton.first_given() + ": " + method.name + " has no Newton iteration to set");
-  iterations.apply(method, settings);
-  return settings;
-}
-
 // run.txt's lines of the method's settings, and the stretch it let through at the recorded states.
 KeyValues run_lines(const Stepper& stepper, const RunResult& result) {
   KeyValues lines;
@@ -77,7 +64,7 @@ int main(int argc, char** argv) {
       require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(opt.scene.grid.particle_count()));
     const Scene scene(opt.scene);
     ForceField field(scene);
-    const MethodSettings settings = settings_of(*method, scene, newton, iterations);
+    const MethodSettings settings = method_settings(*method, scene, newton, iterations);
     std::unique_ptr<Stepper> stepper;
     try {
       stepper = method->stepper(field, settings);

@@ -210,7 +210,7 @@ BendingEnergy::BendingEnergy(const Scene& scene, BendingModel model, double bend
   // free triangle, half the hinge's area, so its weight c doubles (a clamped strip then bends from the clamp
   // line, not half a spacing behind it). Hinges with all four particles pinned never change and are dropped.
   std::erase_if(hinges_, [&](const Hinge& h) {
-    return std::ranges::all_of(h.particle, [&](int p) { return scene.is_pinned(p); });
+    return std::all_of(h.particle.begin(), h.particle.end(), [&](int p) { return scene.is_pinned(p); });
   });
   for (Hinge& h : hinges_)
     if (scene.is_pinned(h.particle[0]) && scene.is_pinned(h.particle[1]) &&

@@ -111,8 +111,10 @@ Scene::Scene(const SceneParams& params) : params_(params) {
 }
 
 bool Scene::has_damping() const {
-  return std::ranges::any_of(all_spring_families,
-                             [this](SpringFamily f) { return damping(f) != 0.0 && springs_.count(f) > 0; });
+  // std::any_of on iterators rather than std::ranges::any_of: Emscripten 3.1's libc++ (the book's WebAssembly
+  // build) has no ranges algorithms.
+  return std::any_of(all_spring_families.begin(), all_spring_families.end(),
+                     [this](SpringFamily f) { return damping(f) != 0.0 && springs_.count(f) > 0; });
 }
 
 Eigen::VectorXd Scene::initial_positions() const { return rest_positions_.head(dof_count()); }

@@ -6,6 +6,9 @@
 #include "integrators/local_global.hpp"
 #include "integrators/xpbd.hpp"
 
+#include <algorithm>
+#include <vector>
+
 namespace cloth {
 
 // [jacobian_default]
@@ -144,6 +147,18 @@ KeyValues IterationFlags::run_lines(const Stepper& stepper) {
   if (const auto* xpbd = dynamic_cast<const Xpbd*>(&stepper))
     return {{"iterations", std::to_string(xpbd->iterations())}, {"substeps", std::to_string(xpbd->substeps())}};
   return {};
+}
+
+MethodSettings method_settings(const Method& method, const Scene& scene, const NewtonFlags& newton,
+                               const IterationFlags& iterations) {
+  MethodSettings settings;
+  const std::vector<const Method*> implicit = newton_methods();
+  if (std::find(implicit.begin(), implicit.end(), &method) != implicit.end())
+    settings.newton = newton.settings_for(scene);
+  else if (!newton.first_given().empty())
+    throw InputError(newton.first_given() + ": " + method.name + " has no Newton iteration to set");
+  iterations.apply(method, settings);
+  return settings;
 }
 
 }  // namespace cloth

@@ -71,4 +71,11 @@ class IterationFlags {
   std::optional<int> substeps_;
 };
 
+/// The settings of `method` from both kinds of flags: Newton's for the methods StageNewton solves (by
+/// NewtonFlags::settings_for), the iterations and substeps for the iterative rows (IterationFlags::apply). Throws
+/// InputError naming the first Newton flag given for a method that has no Newton iteration, and whatever the two
+/// calls throw. What `ch10_cloth` and the book's WebAssembly module (web/cloth_web.cpp) run a method with.
+MethodSettings method_settings(const Method& method, const Scene& scene, const NewtonFlags& newton,
+                               const IterationFlags& iterations);
+
 }  // namespace cloth
