@@ -6,7 +6,7 @@
 // largest distance of a particle at T from where the reference (RK4 at a quarter of its stable step) puts it.
 // Writes peers.md (the table), peers_ratio.md (the sentence that compares the fastest of each side),
 // peers_check.md (the plain loop against the book's forces) and peers.dat to --out.
-#include "plain_fabric.hpp"
+#include "peer_systems.hpp"
 #include "study.hpp"
 
 #include "analysis/lattice_frequency.hpp"
@@ -33,96 +33,17 @@
 
 using namespace cloth;
 using ch10::format;
+using ch10::OdeSystem;
+using ch10::PlainSystem;
+using ch10::CoreSystem;
+using ch10::rhs_callback;
+using ch10::jacobian_callback;
+using ch10::check;
+using ch10::failure_note;
 
 namespace {
 
 constexpr double T = 0.5;
-
-// ---------------------------------------------------------------------------------------------------------------
-// The two right-hand sides every peer is driven with: y = (x, v), y' = (v, a), and the Jacobian dy'/dy.
-
-struct OdeSystem {
-  virtual ~OdeSystem() = default;
-  [[nodiscard]] virtual int size() const = 0;
-  [[nodiscard]] virtual std::vector<double> initial_state() const = 0;
-  virtual void rhs(const double* y, double* dydt) = 0;
-  [[nodiscard]] virtual long nonzeros() const = 0;
-  /// Fills a compressed-column matrix with the Jacobian at y (pattern and values).
-  virtual void jacobian(const double* y, sunindextype* starts, sunindextype* rows, double* values) = 0;
-  /// Every particle's position (pinned ones included, grid order) from a state.
-  [[nodiscard]] virtual Vector positions(const std::vector<double>& y) const = 0;
-};
-
-// A reader's own loop over the springs.
-class PlainSystem : public OdeSystem {
- public:
-  explicit PlainSystem(const SceneParams& p)
-      : cloth_(p.grid.M, p.grid.N, p.grid.d, p.stiffness, p.damping, p.mass, p.gravity, p.initial_velocity_z) {}
-  [[nodiscard]] int size() const override { return cloth_.size(); }
-  [[nodiscard]] std::vector<double> initial_state() const override { return cloth_.initial_state(); }
-  void rhs(const double* y, double* dydt) override { cloth_.rhs(y, dydt); }
-  [[nodiscard]] long nonzeros() const override { return cloth_.nonzeros(); }
-  void jacobian(const double* y, sunindextype* starts, sunindextype* rows, double* values) override {
-    std::copy(cloth_.column_starts().begin(), cloth_.column_starts().end(), starts);
-    std::copy(cloth_.rows().begin(), cloth_.rows().end(), rows);
-    cloth_.jacobian(y, values);
-  }
-  [[nodiscard]] Vector positions(const std::vector<double>& y) const override {
-    return Eigen::Map<const Vector>(y.data(), 3 * cloth_.particles());
-  }
-
- private:
-  ch10::PlainFabric cloth_;
-};
-
-// The book's force routine, cloth::ForceField, on the free particles.
-class CoreSystem : public OdeSystem {
- public:
-  explicit CoreSystem(const Scene& scene)
-      : scene_(scene), field_(scene_), n_(scene.dof_count()), dfdx_(field_.pattern()), dfdv_(field_.pattern()) {}
-  [[nodiscard]] int size() const override { return 2 * n_; }
-  [[nodiscard]] std::vector<double> initial_state() const override {
-    std::vector<double> y(static_cast<std::size_t>(2 * n_));
-    Eigen::Map<Vector>(y.data(), n_) = scene_.initial_positions();
-    Eigen::Map<Vector>(y.data() + n_, n_) = scene_.initial_velocities();
-    return y;
-  }
-  void rhs(const double* y, double* dydt) override {
-    Eigen::Map<Vector>(dydt, n_) = Eigen::Map<const Vector>(y + n_, n_);
-    field_.acceleration(Eigen::Map<const Vector>(y, n_), Eigen::Map<const Vector>(y + n_, n_),
-                        Eigen::Map<Vector>(dydt + n_, n_));
-  }
-  [[nodiscard]] long nonzeros() const override { return 2L * n_ + 2L * dfdx_.nonZeros(); }
-  // [[0, I], [df/dx / m, df/dv / m]], the upper half's diagonal stored in every column.
-  void jacobian(const double* y, sunindextype* starts, sunindextype* rows, double* values) override {
-    field_.jacobians(Eigen::Map<const Vector>(y, n_), Eigen::Map<const Vector>(y + n_, n_), dfdx_, dfdv_);
-    const double m = scene_.params().mass;
-    sunindextype k = 0;
-    for (int c = 0; c < 2 * n_; ++c) {
-      const bool velocity = c >= n_;
-      const int block_column = velocity ? c - n_ : c;
-      starts[c] = k;
-      rows[k] = block_column;
-      values[k++] = velocity ? 1.0 : 0.0;
-      for (SparseMatrix::InnerIterator it(velocity ? dfdv_ : dfdx_, block_column); it; ++it) {
-        rows[k] = n_ + it.row();
-        values[k++] = it.value() / m;
-      }
-    }
-    starts[2 * n_] = k;
-  }
-  [[nodiscard]] Vector positions(const std::vector<double>& y) const override {
-    Vector all(3 * scene_.particle_count());
-    scene_.all_positions(Eigen::Map<const Vector>(y.data(), n_), all);
-    return all;
-  }
-
- private:
-  const Scene& scene_;
-  ForceField field_;
-  int n_;
-  SparseMatrix dfdx_, dfdv_;
-};
 
 // ---------------------------------------------------------------------------------------------------------------
 // The peers.
@@ -162,34 +83,6 @@ Outcome odeint_dopri5(OdeSystem& system, double tol) {
 }
 // [odeint_peers]
 
-// SUNDIALS is C: an exception must not pass through it, so an interrupt (Ctrl-C) is an unrecoverable failure of
-// either callback, which ends the integration; the caller then stops at throw_if_interrupted().
-int rhs_callback(realtype /*t*/, N_Vector y, N_Vector ydot, void* data) {
-  if (const int stop = sundials_stop_requested()) return stop;
-  static_cast<OdeSystem*>(data)->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-  return 0;
-}
-
-int jacobian_callback(realtype /*t*/, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* data, N_Vector /*tmp1*/,
-                      N_Vector /*tmp2*/, N_Vector /*tmp3*/) {
-  if (const int stop = sundials_stop_requested()) return stop;
-  static_cast<OdeSystem*>(data)->jacobian(N_VGetArrayPointer(y), SUNSparseMatrix_IndexPointers(J),
-                                          SUNSparseMatrix_IndexValues(J), SUNSparseMatrix_Data(J));
-  return 0;
-}
-
-void check(int flag, const char* call) {
-  if (flag < 0) throw std::runtime_error(std::string("SUNDIALS ") + call + " failed with flag " + std::to_string(flag));
-}
-
-// A failed run's note, in the model page's terms: the status (with its failure kind), the step that could not be
-// taken and the last good time, and the library's flag: "step_failed (newton_not_converged) at step 1 after
-// t = 0 s, ARK_CONV_FAILURE".
-std::string failure_note(const SundialsEnd& end, long steps_taken, double t) {
-  std::string note = run_status_name(end.status);
-  if (end.status == RunStatus::step_failed) note.append(" (").append(step_failure_name(end.failure)).append(")");
-  return note + " at step " + std::to_string(steps_taken + 1) + " after t = " + format_number(t, 3) + " s, " + end.flag;
-}
 
 // [sundials_peers]
 enum class Sundials { cvode_bdf, arkode_newton, arkode_linear };
