@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
       }
       reference_rate = std::max(reference_rate, ch10::measure_part(p, plan, dir, command) / size);
     }
-    if (tables) ch10::write_map_tables(dir, command);
+    if (tables) ch10::write_map_tables(dir, command, !quick);
     return 0;
   });
 }

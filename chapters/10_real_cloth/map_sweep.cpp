@@ -131,9 +131,12 @@ double measure_part(const MapPart& part, const SweepPlan& plan, const std::strin
     int stalled = 0;
     for (int k = 0; k < plan.max_runs_per_series; ++k) {
       // The ladder's cost model: a rung costs about twice the one before (twice the steps, or a tenth of the
-      // tolerance for the adaptive peers); a rung predicted over the budget, or slower than a run that already
-      // reached 1 mm, is not started.
-      if (k > 0 && (2 * last_seconds > plan.run_budget || 2 * last_seconds > plan.prune_factor * best_to_finest)) break;
+      // tolerance for the adaptive peers). A rung predicted over the budget is not started; nor one predicted
+      // prune_factor times slower than a run that reached 1 mm once the ladder is plausible (5 % of the motion),
+      // ten times that before, so that the implicit and position-based column is measured where it can be.
+      const bool plausible = last_error <= 0.05 * motion.over_frames;
+      const double prune = (plausible ? 1 : 10) * plan.prune_factor * best_to_finest;
+      if (k > 0 && (2 * last_seconds > plan.run_budget || 2 * last_seconds > prune)) break;
       const MapRun run = series.run(k);
       TrajectoryError error{NAN, NAN, 0};
       if (run.ok) error = trajectory_error(run.frames, ref.frames);
