@@ -4,6 +4,7 @@
 // name (--part), the full sweep part by part (--all), and the tables are written from the parts' files (--tables).
 #include "map_sweep.hpp"
 
+#include "base/input_error.hpp"
 #include "program/command_line.hpp"
 #include "program/fragment.hpp"
 #include "program/output.hpp"
@@ -23,8 +24,14 @@ int main(int argc, char** argv) {
   std::vector<ch10::MapPart> parts;
   ch10::SweepPlan plan;
   bool all = false, quick = false, tables = false;
-  cli.add_value("--part", "SCENE_N_1eE", "measure this part of the map (curtain|swing, n, K = 1eE); may be repeated",
-                [&](const std::string& s) { parts.push_back(ch10::parse_map_part(s)); });
+  cli.add_value("--part", "PART[,PART]...", "measure these parts of the map, each SCENE_N_1eE (curtain|swing, n, K = 1eE)",
+                [&](const std::string& s) {
+                  std::size_t start = 0;
+                  for (std::size_t comma = s.find(','); ; start = comma + 1, comma = s.find(',', start)) {
+                    parts.push_back(ch10::parse_map_part(s.substr(start, comma - start)));
+                    if (comma == std::string::npos) break;
+                  }
+                });
   cli.add_switch("--all", "measure every part, cheapest first, skipping a part whose reference alone is predicted "
                           "over the run budget", [&] { all = true; });
   cli.add_switch("--quick", "one small part with a one-second budget per run (for the plots target)",
@@ -36,6 +43,9 @@ int main(int argc, char** argv) {
     const Options opt = cli.parse(argc, argv);
     const std::string dir = opt.run.out_dir;
     const std::string command = reader_command(argc, argv);
+    if (parts.empty() && !all && !quick && !tables)
+      throw InputError("nothing to measure: expected --part, --all, --quick or --tables");
+    if (quick && (all || !parts.empty())) throw InputError("--quick measures its own part: expected no --part or --all");
     if (quick) {
       parts = {{"curtain", 12, 1e4}};
       plan.run_budget = 1;

@@ -69,11 +69,11 @@ std::vector<Series> series_of(const Scene& scene, double T) {
                [=, &scene](int k) { return book_run(scene, "symplectic_euler", stable(se, k), T); }});
   s.push_back({"book", "rk4", "book", [=](int k) { return step(stable(rk4, k)); },
                [=, &scene](int k) { return book_run(scene, "rk4", stable(rk4, k), T); }});
-  for (const char* name : {"implicit_euler/one/cg", "implicit_euler", "local_global/10it"})
+  for (const char* name : {"implicit_euler/one/cg", "implicit_euler", "local_global"})
     s.push_back({"book", name, "book", [=](int k) { return step(frames_step(k)); },
                  [=, &scene](int k) { return book_run(scene, name, frames_step(k), T); }});
-  const auto xpbd = [](int k) { return format("xpbd/10it/%dsub", 4 << (2 * k)); };  // 4, 16, 64, ... substeps
-  s.push_back({"book", "xpbd/10it", "book", [=](int k) { return xpbd(k) + ", h = 1/60"; },
+  const auto xpbd = [](int k) { return format("xpbd/%dsub", 4 << (2 * k)); };  // 4, 16, 64, ... substeps
+  s.push_back({"book", "xpbd", "book", [=](int k) { return xpbd(k) + ", h = 1/60"; },
                [=, &scene](int k) { return book_run(scene, xpbd(k), frame, T); }});
   const auto small = [](int k) { return format("small_steps/%dsub", 32 << k); };  // 32, 64, 128, ... substeps
   s.push_back({"book", "small_steps", "book", [=](int k) { return small(k) + ", h = 1/60"; },

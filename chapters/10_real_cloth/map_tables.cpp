@@ -52,7 +52,14 @@ Part read_part(const std::string& path) {
     Row r;
     s >> r.side >> r.program >> r.forces >> std::quoted(r.setting) >> r.steps >> r.seconds >> r.error_at_T >> r.error >>
         r.status;
-    if (s) p.rows.push_back(r);
+    if (!s) continue;
+    if (r.side == "book") {  // the one name of each method (integrators/configuration.hpp), however it was written
+      r.program = label(r.program);
+      const std::size_t comma = r.setting.find(',');
+      if (comma != std::string::npos && r.setting.find('/') < comma)
+        r.setting = label(r.setting.substr(0, comma)) + r.setting.substr(comma);
+    }
+    p.rows.push_back(r);
   }
   return p;
 }

@@ -10,11 +10,13 @@
 #include "study.hpp"
 
 #include "analysis/lattice_frequency.hpp"
+#include "analysis/trajectory_measures.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "program/command_line.hpp"
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
+#include "program/timing.hpp"
 #include "program/output.hpp"
 #include "program/sundials.hpp"
 
@@ -166,9 +168,9 @@ template <class Body>
 double best_time(int runs, double budget, Body&& body) {
   double best = INFINITY, spent = 0;
   for (int k = 0; k < runs && (k == 0 || spent < budget); ++k) {
-    const double t0 = ch10::cpu_seconds();
+    const double t0 = thread_cpu_seconds();
     body();
-    const double t = ch10::cpu_seconds() - t0;
+    const double t = thread_cpu_seconds() - t0;
     best = std::min(best, t);
     spent += t;
     throw_if_interrupted();
@@ -304,7 +306,7 @@ int main(int argc, char** argv) {
       if (out.ok) {
         const Vector x = system.positions(out.y);
         if (x.allFinite() && x.cwiseAbs().maxCoeff() < 100)
-          row.error = ch10::max_distance(x, reference);
+          row.error = largest_distance(x, reference);
         else
           row.ok = false, row.note = "diverged";
       }
@@ -358,7 +360,7 @@ int main(int argc, char** argv) {
       if (r.ok) {
         Vector all(3 * scene.particle_count());
         scene.all_positions(r.x, all);
-        row.error = ch10::max_distance(all, reference);
+        row.error = largest_distance(all, reference);
       }
       std::printf("  %-34s %-18s %7lld steps %8.4f s  error %.2e %s\n", row.program.c_str(), row.setting.c_str(),
                   row.steps, row.seconds, row.error, row.note.c_str());
@@ -367,7 +369,7 @@ int main(int argc, char** argv) {
     book("symplectic_euler", se_steps);
     book("rk4", rk4_steps);
     for (long long steps : quick ? std::vector<long long>{30} : std::vector<long long>{15, 30, 60})
-      book("ie_1newton_cg", steps);
+      book("implicit_euler/one/cg", steps);
     // [book_runs]
 
     // The table, and the comparison of the fastest run of each side at each accuracy.
