@@ -162,7 +162,12 @@ std::vector<std::string> write_map_tables(const std::string& dir, const std::str
             (nearest == nullptr || p.part.n > nearest->part.n))
           nearest = &p;
       }
-      if (present || nearest == nullptr) continue;
+      if (present) continue;
+      if (nearest == nullptr) {
+        add(missing, {format("%d x %d", missing.n, missing.n), format("%g", missing.K), "not measured", "-",
+                      "not measured", "not measured", "not measured"});
+        continue;
+      }
       const std::string grid = format("%d x %d", missing.n, missing.n);
       const std::string motion = format("not measured (%.3g m at %d x %d)", nearest->motion, nearest->part.n,
                                         nearest->part.n);
