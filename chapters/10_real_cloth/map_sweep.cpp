@@ -101,7 +101,6 @@ std::vector<Series> series_of(const Scene& scene, double T) {
 
 }  // namespace
 
-// [map_measure]
 double measure_part(const MapPart& part, const SweepPlan& plan, const std::string& dir, const std::string& command) {
   SceneParams p = fabric(part.n, part.K);
   p.pins = PinSet::edge;
@@ -125,6 +124,7 @@ double measure_part(const MapPart& part, const SweepPlan& plan, const std::strin
                            build_description().c_str());
   std::printf("%s: motion %.3g m, reference %lld steps in %.1f s\n", part.name().c_str(), motion.over_frames, ref.steps,
               reference_seconds);
+  // [map_measure]
   double best_to_finest = INFINITY;  // the fastest run so far that reached 1 mm: no slower run can win a cell
   for (const Series& series : series_of(scene, T)) {
     double last_seconds = 0, last_error = INFINITY;
@@ -157,9 +157,9 @@ double measure_part(const MapPart& part, const SweepPlan& plan, const std::strin
       last_error = error.over_frames;
     }
   }
+  // [map_measure]
   write_text(dir, "map_" + part.name() + ".dat", dat);
   return reference_seconds;
 }
-// [map_measure]
 
 }  // namespace ch10

@@ -17,7 +17,7 @@ struct MapPart {
   [[nodiscard]] std::string name() const;
 };
 
-/// The part named "<scene>_<n>_<K>", K written as 1e<e>. Throws cloth::InputError naming what is accepted.
+/// The part named `SCENE_N_1eE` (K = 10^E). Throws cloth::InputError naming what is accepted.
 MapPart parse_map_part(const std::string& name);
 /// Every part of the full map, cheapest first.
 std::vector<MapPart> full_map();
@@ -34,11 +34,11 @@ struct SweepPlan {
   double prune_factor = 20;
 };
 
-/// Measures `part` and writes DIR/map_<part>.dat; `command` is the line that measures it again. Returns the
+/// Measures `part` and writes `DIR/map_PART.dat`; `command` is the line that measures it again. Returns the
 /// reference's processor seconds (for the cost model of the next parts).
 double measure_part(const MapPart& part, const SweepPlan& plan, const std::string& dir, const std::string& command);
 
-/// Reads every map_<part>.dat in `dir` and writes the map's fragments there (map_curtain.md, map_swing.md);
+/// Reads every `map_PART.dat` in `dir` and writes the map's fragments there (map_curtain.md, map_swing.md);
 /// returns their names. With `predict_missing`, each part of the full map without a file gets the explicit
 /// winners of the nearest smaller measured grid scaled by the cost model, marked as predicted.
 std::vector<std::string> write_map_tables(const std::string& dir, const std::string& command, bool predict_missing);

@@ -74,7 +74,6 @@ std::string who(const Row& r) {
   return r.side == "peer" ? name + " (" + r.forces + " forces)" : name;
 }
 
-// [map_cell]
 bool in_column(const Row& r, const std::string& side) {
   return side == "implicit" ? !explicit_program(r.program) : r.side == side;
 }
@@ -89,6 +88,7 @@ const Row* fastest(const Part& p, const std::string& side, double level) {
   return best;
 }
 
+// [map_cell]
 /// The cell: the fastest run that reached `level`; else the cost model's prediction from each ladder's last two
 /// rungs, error ~ seconds^-q, marked as predicted.
 std::string best(const Part& p, const std::string& side, double level) {
@@ -107,6 +107,7 @@ std::string best(const Part& p, const std::string& side, double level) {
   if (std::isfinite(predicted)) return format("*predicted* %s: %.2g s", by.c_str(), predicted);
   return "none";
 }
+// [map_cell]
 
 /// A part not measured (its reference alone is predicted over the budget): an explicit winner of the nearest
 /// smaller measured grid, scaled by the explicit cost model, time ~ particles x steps ~ n^3 (the stable step
@@ -117,7 +118,6 @@ std::string scaled(const Part& measured, int n, const std::string& side, double 
   return format("*predicted* %s: %.2g s", r->program.c_str(),
                 r->seconds * std::pow(static_cast<double>(n) / measured.part.n, 3));
 }
-// [map_cell]
 
 }  // namespace
 
