@@ -12,6 +12,7 @@
 #include "model/single_spring.hpp"
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
+#include "program/timing.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -73,15 +74,15 @@ const std::vector<double> frame_steps = {1.0 / 30, 1.0 / 60, 1.0 / 120};
 const std::vector<MethodRow> methods = {
     {"symplectic_euler", {}},
     {"rk4", {}},
-    {"ie_1newton_cg", frame_steps},
-    {"ie_newton_cg", frame_steps, 1, false},
-    {"local_global_10", frame_steps},
-    {"xpbd_10_4", {1.0 / 60}},
-    {"xpbd_10_16", {1.0 / 60}},
-    {"xpbd_10_64", {1.0 / 60}},
-    {"small_steps_64", {1.0 / 60}},
-    {"small_steps_256", {1.0 / 60}},
-    {"small_steps_512", {1.0 / 60}},
+    {"implicit_euler/one/cg", frame_steps},
+    {"implicit_euler/cg", frame_steps, 1, false},
+    {"local_global", frame_steps},
+    {"xpbd/4sub", {1.0 / 60}},
+    {"xpbd/16sub", {1.0 / 60}},
+    {"xpbd/64sub", {1.0 / 60}},
+    {"small_steps/64sub", {1.0 / 60}},
+    {"small_steps/256sub", {1.0 / 60}},
+    {"small_steps/512sub", {1.0 / 60}},
 };
 // [curtain_methods]
 
@@ -131,7 +132,7 @@ CurtainRun run_method(const Scene& scene, const std::string& key, double h, doub
   const long long every = std::max(1LL, std::llround(1 / (frame_rate * h)));  // steps between recorded frames
   std::vector<Vector> xs{scene.initial_positions()}, vs{scene.initial_velocities()};
   Vector x = xs[0], v = vs[0];
-  const double start = cpu_seconds();
+  const double start = thread_cpu_seconds();
   for (long long k = 1; k <= run.steps; ++k) {
     throw_if_interrupted();
     if (!stepper->step(h, x, v)) {
@@ -147,7 +148,7 @@ CurtainRun run_method(const Scene& scene, const std::string& key, double h, doub
     }
     if (k % every == 0) xs.push_back(x), vs.push_back(v);
   }
-  run.seconds = cpu_seconds() - start;
+  run.seconds = thread_cpu_seconds() - start;
   std::vector<Frame> frames;
   for (std::size_t f = 0; f < xs.size(); ++f) {
     frames.push_back({static_cast<double>(f) * static_cast<double>(every) * h, Vector(3 * scene.particle_count())});
@@ -174,12 +175,12 @@ SceneResult measure_scene(const CurtainScene& c, int n, bool quick) {
   ForceField field(scene);
   const int frames = static_cast<int>(std::lround(c.T * frame_rate));
   const double tolerance = quick ? 1e-8 : 1e-10;
-  const double start = cpu_seconds();
+  const double start = thread_cpu_seconds();
   r.reference = reference_trajectory(field, scene.initial_positions(), scene.initial_velocities(), c.T, frames,
                                      tolerance, &interrupt_flag());
   throw_if_interrupted();
   std::printf("%s %dx%d: reference dopri5 at %g, %lld steps, %.2f s\n", c.tag.c_str(), n, n, tolerance,
-              r.reference.steps, cpu_seconds() - start);
+              r.reference.steps, thread_cpu_seconds() - start);
   if (!quick && n == 20) {
     r.check_tolerance = 1e-12;
     const ReferenceTrajectory tight = reference_trajectory(field, scene.initial_positions(), scene.initial_velocities(),
@@ -372,7 +373,7 @@ void rotation_study(const std::string& out, const std::string& command) {
   MarkdownTable t({"h [s]", "h w0", "predicted w(T) / w0", "implicit Euler, Newton", "implicit Euler, 1 iteration",
                    "RK4 (at 1e-4 s)"},
                   "rrrrrr");
-  std::string dat = "# t w_measured w_predicted; one block per (method, h): ie_newton_direct then ie_1newton_direct "
+  std::string dat = "# t w_measured w_predicted; one block per (method, h): implicit_euler/exact then implicit_euler/one/exact "
                     "at h = 1/30, 1/60, 1/120, then rk4 at 1e-4\n";
   const RotationRun exact = rotation("rk4", 1e-4, Kspring, w0, T);
   // The stiff-limit recurrence of the page: the rate after each step of h.
@@ -387,7 +388,7 @@ void rotation_study(const std::string& out, const std::string& command) {
     const std::vector<double> prediction = predicted_rates(h);
     const double predicted = prediction.back();
     std::vector<std::string> row = {step_text(h), format("%.3g", h * w0), format("%.3f", predicted / w0)};
-    for (const char* method : {"ie_newton_direct", "ie_1newton_direct"}) {
+    for (const char* method : {"implicit_euler/exact", "implicit_euler/one/exact"}) {
       const RotationRun r = rotation(method, h, Kspring, w0, T);
       row.push_back(format("%.3f", r.w.back() / w0));
       dat += format("# %s h = %s\n", method, step_text(h).c_str());

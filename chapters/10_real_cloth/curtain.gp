@@ -16,10 +16,10 @@ do for [scene in "curtain swing"] {
   if (scene eq "curtain") { set key bottom left } else { set key top left }
   plot E index "reference" u 1:2 w l lw 4 lc rgb "black" t "reference (dopri5)", \
        E index "rk4 " u 1:2 w l lw 2 dt 2 lc rgb "#1f77b4" t "RK4 at its stable step", \
-       E index "ie_1newton_cg h = 1/30" u 1:2 w lp pt 7 ps 0.6 lc rgb "#d62728" t "implicit Euler, 1 iteration, h = 1/30", \
-       E index "ie_1newton_cg h = 1/60" u 1:2 w lp pt 5 ps 0.5 lc rgb "#ff7f0e" t "implicit Euler, 1 iteration, h = 1/60", \
-       E index "ie_1newton_cg h = 1/120" u 1:2 w l lw 2 lc rgb "#9467bd" t "implicit Euler, 1 iteration, h = 1/120", \
-       E index "local_global_10 h = 1/60" u 1:2 w lp pt 4 ps 0.6 lc rgb "#e377c2" t "local/global, 10 iterations, h = 1/60"
+       E index "implicit_euler/one/cg h = 1/30" u 1:2 w lp pt 7 ps 0.6 lc rgb "#d62728" t "implicit Euler, 1 iteration, h = 1/30", \
+       E index "implicit_euler/one/cg h = 1/60" u 1:2 w lp pt 5 ps 0.5 lc rgb "#ff7f0e" t "implicit Euler, 1 iteration, h = 1/60", \
+       E index "implicit_euler/one/cg h = 1/120" u 1:2 w l lw 2 lc rgb "#9467bd" t "implicit Euler, 1 iteration, h = 1/120", \
+       E index "local_global h = 1/60" u 1:2 w lp pt 4 ps 0.6 lc rgb "#e377c2" t "local/global, 10 iterations, h = 1/60"
 }
 unset multiplot
 
@@ -47,11 +47,11 @@ do for [scene in "curtain swing corners"] {
   okp(prefix) = (strstrt(strcol(1), prefix) == 1 && strcol(10) eq "ok")
   plot F u (ok("symplectic_euler") ? $4 : 1/0):6 w p pt 7 ps 1.5 lc rgb "#2ca02c" t "symplectic Euler", \
        F u (ok("rk4") ? $4 : 1/0):6 w p pt 5 ps 1.5 lc rgb "#1f77b4" t "RK4", \
-       F u (ok("ie_1newton_cg") ? $4 : 1/0):6 w lp pt 9 ps 1.3 lc rgb "#ff7f0e" t "implicit Euler, 1 iteration (1/30, 1/60, 1/120)", \
-       F u (ok("ie_newton_cg") ? $4 : 1/0):6 w lp pt 11 ps 1.3 lc rgb "#d62728" t "implicit Euler, Newton", \
-       F u (ok("local_global_10") ? $4 : 1/0):6 w lp pt 13 ps 1.3 lc rgb "#e377c2" t "local/global, 10 iterations", \
-       F u (okp("xpbd_") ? $4 : 1/0):6 w lp pt 15 ps 1.3 lc rgb "#8c564b" t "XPBD, 10 iterations (4, 16, 64 substeps a frame)", \
-       F u (okp("small_steps_") ? $4 : 1/0):6 w lp pt 6 ps 1.3 lc rgb "#17becf" t "small steps (64, 256, 512 substeps a frame)"
+       F u (ok("implicit_euler/one/cg") ? $4 : 1/0):6 w lp pt 9 ps 1.3 lc rgb "#ff7f0e" t "implicit Euler, 1 iteration (1/30, 1/60, 1/120)", \
+       F u (ok("implicit_euler/cg") ? $4 : 1/0):6 w lp pt 11 ps 1.3 lc rgb "#d62728" t "implicit Euler, Newton", \
+       F u (ok("local_global") ? $4 : 1/0):6 w lp pt 13 ps 1.3 lc rgb "#e377c2" t "local/global, 10 iterations", \
+       F u (okp("xpbd/") ? $4 : 1/0):6 w lp pt 15 ps 1.3 lc rgb "#8c564b" t "XPBD, 10 iterations (4, 16, 64 substeps a frame)", \
+       F u (okp("small_steps/") ? $4 : 1/0):6 w lp pt 6 ps 1.3 lc rgb "#17becf" t "small steps (64, 256, 512 substeps a frame)"
 }
 unset multiplot
 unset arrow 1
@@ -71,5 +71,5 @@ set title "Two particles turning at w0 = 10 rad/s on stiff springs (K/m = 1e6 s^
 set key bottom left font ",10" box opaque
 R = data.'/rotation.dat'
 plot R index "rk4" u 1:($2/10) w l lw 3 lc rgb "black" t "RK4 at h = 1e-4 s", \
-     for [h in "1/30 1/60 1/120"] R index "ie_newton_direct h = ".h u 1:($3/10) w l lw 2 lc rgb (h eq "1/30" ? "#d62728" : h eq "1/60" ? "#ff7f0e" : "#9467bd") t "predicted, h = ".h, \
-     for [h in "1/30 1/60 1/120"] R index "ie_newton_direct h = ".h u 1:($2/10) w p pt 7 ps 0.6 lc rgb (h eq "1/30" ? "#d62728" : h eq "1/60" ? "#ff7f0e" : "#9467bd") t "implicit Euler, Newton, h = ".h
+     for [h in "1/30 1/60 1/120"] R index "implicit_euler/exact h = ".h u 1:($3/10) w l lw 2 lc rgb (h eq "1/30" ? "#d62728" : h eq "1/60" ? "#ff7f0e" : "#9467bd") t "predicted, h = ".h, \
+     for [h in "1/30 1/60 1/120"] R index "implicit_euler/exact h = ".h u 1:($2/10) w p pt 7 ps 0.6 lc rgb (h eq "1/30" ? "#d62728" : h eq "1/60" ? "#ff7f0e" : "#9467bd") t "implicit Euler, Newton, h = ".h

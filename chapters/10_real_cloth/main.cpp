@@ -8,10 +8,12 @@
 
 #include "analysis/fastest_modes.hpp"
 #include "analysis/lattice_frequency.hpp"
+#include "analysis/trajectory_measures.hpp"
 #include "base/format_number.hpp"
 #include "model/fabric.hpp"
 #include "program/command_line.hpp"
 #include "program/interrupt.hpp"
+#include "program/timing.hpp"
 #include "program/fragment.hpp"
 #include "program/output.hpp"
 
@@ -62,7 +64,7 @@ std::vector<Vector> fabric_motion(int n, double T, int snapshots, long long& ste
   const double h = T / static_cast<double>(steps);
   Vector x = scene.initial_positions(), v = scene.initial_velocities(), all(3 * scene.particle_count());
   std::vector<Vector> out;
-  const double t0 = ch10::cpu_seconds();
+  const double t0 = thread_cpu_seconds();
   for (long long k = 0; k <= steps; ++k) {
     if (k % (steps / snapshots) == 0) {
       scene.all_positions(x, all);
@@ -70,7 +72,7 @@ std::vector<Vector> fabric_motion(int n, double T, int snapshots, long long& ste
     }
     if (k < steps) rk4->step(h, x, v);
   }
-  seconds = ch10::cpu_seconds() - t0;
+  seconds = thread_cpu_seconds() - t0;
   return out;
 }
 // [refinement]
@@ -233,7 +235,7 @@ Curves error_curves(double K, double T, const std::vector<std::string>& methods,
   // method, at half that step.
   c.reference_steps = static_cast<long long>(std::ceil(T / (2 * std::sqrt(2.0) / omega / reference_division)));
   const Vector ref = ch10::reference(scene, T, c.reference_steps, check_reference, c.reference_agreement);
-  c.displacement = ch10::max_distance(ref, scene.initial_positions());
+  c.displacement = largest_distance(ref, scene.initial_positions());
   for (const std::string& method : methods) {
     long long steps = 0;
     if (ch10::is_explicit(method)) {
@@ -245,7 +247,7 @@ Curves error_curves(double K, double T, const std::vector<std::string>& methods,
     for (int k = 0; k <= max_halvings; ++k, steps *= 2) {
       const ch10::Run r = ch10::run_to(scene, method, T, steps, budget / 4);
       Measurement m{method, T / static_cast<double>(steps), steps, r.seconds, NAN, r.ok, r.message, r.counters};
-      if (r.ok) m.error = ch10::max_distance(r.x, ref);
+      if (r.ok) m.error = largest_distance(r.x, ref);
       c.rows.push_back(m);
       if ((r.ok && m.error < 5e-4) || r.seconds > budget) break;
     }
@@ -364,9 +366,9 @@ double measure_step_cost(int n, const std::string& method, int steps) {
 // iterations cost, one iteration's cost grows like a single-iteration step's, and every local/global iteration
 // count grows like 10 iterations.
 std::string cost_proxy(const std::string& method) {
-  if (method == "ie_newton_direct") return "ie_1newton_direct";
-  if (method == "ie_newton_cg") return "ie_1newton_cg";
-  if (method.rfind("local_global_", 0) == 0) return "local_global_10";
+  if (method == "implicit_euler/exact") return "implicit_euler/one/exact";
+  if (method == "implicit_euler/cg") return "implicit_euler/one/cg";
+  if (method.rfind("local_global", 0) == 0) return "local_global";
   return method;
 }
 
@@ -390,9 +392,9 @@ void map(const Settings& s, const std::map<double, Curves>& curves, const std::v
   header.emplace_back("exponent");
   MarkdownTable cost_md(header, "lrrrrr");
   std::string cost_dat = "# method n springs seconds_per_step measured\n";
-  for (const char* name : {"symplectic_euler", "rk4", "ie_1newton_direct", "ie_1newton_cg", "local_global_10"}) {
+  for (const char* name : {"symplectic_euler", "rk4", "implicit_euler/one/exact", "implicit_euler/one/cg", "local_global"}) {
     const std::string method = name;
-    const bool direct = method == "ie_1newton_direct";
+    const bool direct = method == "implicit_euler/one/exact";
     std::vector<int> measured;
     for (int n : sizes) {
       // The quick run measures up to 77 x 77 (39 x 39 for the direct solve, whose factorization is the slowest).
@@ -538,9 +540,9 @@ int main(int argc, char** argv) {
     write_table_fragment(s.out + "/preset.md", preset_table(), s.command);
     // [methods]
     const std::vector<double> stiffnesses = {1e3, 1e4, 1e5, 1e6};
-    const std::vector<std::string> methods = {"symplectic_euler",  "rk4",           "ie_newton_direct",
-                                              "ie_1newton_direct", "ie_1newton_cg", "ie_newton_cg",
-                                              "local_global_10",   "local_global_50"};
+    const std::vector<std::string> methods = {"symplectic_euler",  "rk4",           "implicit_euler/exact",
+                                              "implicit_euler/one/exact", "implicit_euler/one/cg", "implicit_euler/cg",
+                                              "local_global",   "local_global/50it"};
     // [methods]
     stable_steps(s, stiffnesses);
     std::map<double, Curves> curves;

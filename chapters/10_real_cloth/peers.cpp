@@ -6,15 +6,17 @@
 // largest distance of a particle at T from where the reference (RK4 at a quarter of its stable step) puts it.
 // Writes peers.md (the table), peers_ratio.md (the sentence that compares the fastest of each side),
 // peers_check.md (the plain loop against the book's forces) and peers.dat to --out.
-#include "plain_fabric.hpp"
+#include "peer_systems.hpp"
 #include "study.hpp"
 
 #include "analysis/lattice_frequency.hpp"
+#include "analysis/trajectory_measures.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
 #include "program/command_line.hpp"
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
+#include "program/timing.hpp"
 #include "program/output.hpp"
 #include "program/sundials.hpp"
 
@@ -33,96 +35,17 @@
 
 using namespace cloth;
 using ch10::format;
+using ch10::OdeSystem;
+using ch10::PlainSystem;
+using ch10::CoreSystem;
+using ch10::rhs_callback;
+using ch10::jacobian_callback;
+using ch10::check;
+using ch10::failure_note;
 
 namespace {
 
 constexpr double T = 0.5;
-
-// ---------------------------------------------------------------------------------------------------------------
-// The two right-hand sides every peer is driven with: y = (x, v), y' = (v, a), and the Jacobian dy'/dy.
-
-struct OdeSystem {
-  virtual ~OdeSystem() = default;
-  [[nodiscard]] virtual int size() const = 0;
-  [[nodiscard]] virtual std::vector<double> initial_state() const = 0;
-  virtual void rhs(const double* y, double* dydt) = 0;
-  [[nodiscard]] virtual long nonzeros() const = 0;
-  /// Fills a compressed-column matrix with the Jacobian at y (pattern and values).
-  virtual void jacobian(const double* y, sunindextype* starts, sunindextype* rows, double* values) = 0;
-  /// Every particle's position (pinned ones included, grid order) from a state.
-  [[nodiscard]] virtual Vector positions(const std::vector<double>& y) const = 0;
-};
-
-// A reader's own loop over the springs.
-class PlainSystem : public OdeSystem {
- public:
-  explicit PlainSystem(const SceneParams& p)
-      : cloth_(p.grid.M, p.grid.N, p.grid.d, p.stiffness, p.damping, p.mass, p.gravity, p.initial_velocity_z) {}
-  [[nodiscard]] int size() const override { return cloth_.size(); }
-  [[nodiscard]] std::vector<double> initial_state() const override { return cloth_.initial_state(); }
-  void rhs(const double* y, double* dydt) override { cloth_.rhs(y, dydt); }
-  [[nodiscard]] long nonzeros() const override { return cloth_.nonzeros(); }
-  void jacobian(const double* y, sunindextype* starts, sunindextype* rows, double* values) override {
-    std::copy(cloth_.column_starts().begin(), cloth_.column_starts().end(), starts);
-    std::copy(cloth_.rows().begin(), cloth_.rows().end(), rows);
-    cloth_.jacobian(y, values);
-  }
-  [[nodiscard]] Vector positions(const std::vector<double>& y) const override {
-    return Eigen::Map<const Vector>(y.data(), 3 * cloth_.particles());
-  }
-
- private:
-  ch10::PlainFabric cloth_;
-};
-
-// The book's force routine, cloth::ForceField, on the free particles.
-class CoreSystem : public OdeSystem {
- public:
-  explicit CoreSystem(const Scene& scene)
-      : scene_(scene), field_(scene_), n_(scene.dof_count()), dfdx_(field_.pattern()), dfdv_(field_.pattern()) {}
-  [[nodiscard]] int size() const override { return 2 * n_; }
-  [[nodiscard]] std::vector<double> initial_state() const override {
-    std::vector<double> y(static_cast<std::size_t>(2 * n_));
-    Eigen::Map<Vector>(y.data(), n_) = scene_.initial_positions();
-    Eigen::Map<Vector>(y.data() + n_, n_) = scene_.initial_velocities();
-    return y;
-  }
-  void rhs(const double* y, double* dydt) override {
-    Eigen::Map<Vector>(dydt, n_) = Eigen::Map<const Vector>(y + n_, n_);
-    field_.acceleration(Eigen::Map<const Vector>(y, n_), Eigen::Map<const Vector>(y + n_, n_),
-                        Eigen::Map<Vector>(dydt + n_, n_));
-  }
-  [[nodiscard]] long nonzeros() const override { return 2L * n_ + 2L * dfdx_.nonZeros(); }
-  // [[0, I], [df/dx / m, df/dv / m]], the upper half's diagonal stored in every column.
-  void jacobian(const double* y, sunindextype* starts, sunindextype* rows, double* values) override {
-    field_.jacobians(Eigen::Map<const Vector>(y, n_), Eigen::Map<const Vector>(y + n_, n_), dfdx_, dfdv_);
-    const double m = scene_.params().mass;
-    sunindextype k = 0;
-    for (int c = 0; c < 2 * n_; ++c) {
-      const bool velocity = c >= n_;
-      const int block_column = velocity ? c - n_ : c;
-      starts[c] = k;
-      rows[k] = block_column;
-      values[k++] = velocity ? 1.0 : 0.0;
-      for (SparseMatrix::InnerIterator it(velocity ? dfdv_ : dfdx_, block_column); it; ++it) {
-        rows[k] = n_ + it.row();
-        values[k++] = it.value() / m;
-      }
-    }
-    starts[2 * n_] = k;
-  }
-  [[nodiscard]] Vector positions(const std::vector<double>& y) const override {
-    Vector all(3 * scene_.particle_count());
-    scene_.all_positions(Eigen::Map<const Vector>(y.data(), n_), all);
-    return all;
-  }
-
- private:
-  const Scene& scene_;
-  ForceField field_;
-  int n_;
-  SparseMatrix dfdx_, dfdv_;
-};
 
 // ---------------------------------------------------------------------------------------------------------------
 // The peers.
@@ -162,34 +85,6 @@ Outcome odeint_dopri5(OdeSystem& system, double tol) {
 }
 // [odeint_peers]
 
-// SUNDIALS is C: an exception must not pass through it, so an interrupt (Ctrl-C) is an unrecoverable failure of
-// either callback, which ends the integration; the caller then stops at throw_if_interrupted().
-int rhs_callback(realtype /*t*/, N_Vector y, N_Vector ydot, void* data) {
-  if (const int stop = sundials_stop_requested()) return stop;
-  static_cast<OdeSystem*>(data)->rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-  return 0;
-}
-
-int jacobian_callback(realtype /*t*/, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* data, N_Vector /*tmp1*/,
-                      N_Vector /*tmp2*/, N_Vector /*tmp3*/) {
-  if (const int stop = sundials_stop_requested()) return stop;
-  static_cast<OdeSystem*>(data)->jacobian(N_VGetArrayPointer(y), SUNSparseMatrix_IndexPointers(J),
-                                          SUNSparseMatrix_IndexValues(J), SUNSparseMatrix_Data(J));
-  return 0;
-}
-
-void check(int flag, const char* call) {
-  if (flag < 0) throw std::runtime_error(std::string("SUNDIALS ") + call + " failed with flag " + std::to_string(flag));
-}
-
-// A failed run's note, in the model page's terms: the status (with its failure kind), the step that could not be
-// taken and the last good time, and the library's flag: "step_failed (newton_not_converged) at step 1 after
-// t = 0 s, ARK_CONV_FAILURE".
-std::string failure_note(const SundialsEnd& end, long steps_taken, double t) {
-  std::string note = run_status_name(end.status);
-  if (end.status == RunStatus::step_failed) note.append(" (").append(step_failure_name(end.failure)).append(")");
-  return note + " at step " + std::to_string(steps_taken + 1) + " after t = " + format_number(t, 3) + " s, " + end.flag;
-}
 
 // [sundials_peers]
 enum class Sundials { cvode_bdf, arkode_newton, arkode_linear };
@@ -273,9 +168,9 @@ template <class Body>
 double best_time(int runs, double budget, Body&& body) {
   double best = INFINITY, spent = 0;
   for (int k = 0; k < runs && (k == 0 || spent < budget); ++k) {
-    const double t0 = ch10::cpu_seconds();
+    const double t0 = thread_cpu_seconds();
     body();
-    const double t = ch10::cpu_seconds() - t0;
+    const double t = thread_cpu_seconds() - t0;
     best = std::min(best, t);
     spent += t;
     throw_if_interrupted();
@@ -296,6 +191,69 @@ const Row* fastest(const std::vector<Row>& rows, bool book, double tol) {
     if ((r.side == "book") == book && r.ok && r.error <= tol && (best == nullptr || r.seconds < best->seconds))
       best = &r;
   return best;
+}
+
+// The plain loop and the book's forces must be the same model: compare the right-hand sides and the
+// Jacobians at a perturbed, moving state (pinned rows excepted, which the core does not have).
+void check_same_model(const Scene& scene, PlainSystem& plain, CoreSystem& core, const std::string& dir) {
+  std::vector<double> yp = plain.initial_state(), yc = core.initial_state();
+  const int P = scene.particle_count(), n = scene.dof_count();
+  for (int particle = 0; particle < P; ++particle) {
+    const int s = scene.slot(particle);
+    for (int k = 0; k < 3; ++k) {
+      const double dx = 1e-3 * std::sin(1.3 * (3 * particle + k)), dv = 0.1 * std::cos(0.7 * (3 * particle + k));
+      if (s < scene.free_count()) {
+        yp[3 * particle + k] += dx, yc[3 * s + k] += dx;
+        yp[3 * (P + particle) + k] += dv, yc[n + 3 * s + k] += dv;
+      }
+    }
+  }
+  std::vector<double> fp(yp.size()), fc(yc.size());
+  plain.rhs(yp.data(), fp.data());
+  core.rhs(yc.data(), fc.data());
+  double rhs_difference = 0, scale = 0;
+  for (int particle = 0; particle < P; ++particle) {
+    const int s = scene.slot(particle);
+    if (s >= scene.free_count()) continue;
+    for (int k = 0; k < 3; ++k) {
+      rhs_difference = std::max(rhs_difference, std::abs(fp[3 * (P + particle) + k] - fc[n + 3 * s + k]));
+      scale = std::max(scale, std::abs(fc[n + 3 * s + k]));
+    }
+  }
+  // Jacobians as dense matrices over the free coordinates (1200 x 1200 doubles each half: 46 MB in all).
+  const auto dense = [](OdeSystem& sys, const std::vector<double>& y) {
+    std::vector<sunindextype> starts(static_cast<std::size_t>(sys.size()) + 1), rows(static_cast<std::size_t>(sys.nonzeros()));
+    std::vector<double> values(rows.size());
+    sys.jacobian(y.data(), starts.data(), rows.data(), values.data());
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(sys.size(), sys.size());
+    for (int c = 0; c < sys.size(); ++c)
+      for (sunindextype k = starts[c]; k < starts[c + 1]; ++k) J(rows[k], c) += values[k];
+    return J;
+  };
+  const Eigen::MatrixXd Jp = dense(plain, yp), Jc = dense(core, yc);
+  double jacobian_difference = 0, jacobian_scale = 0;
+  for (int a = 0; a < P; ++a)
+    for (int b = 0; b < P; ++b) {
+      const int sa = scene.slot(a), sb = scene.slot(b);
+      if (sa >= scene.free_count() || sb >= scene.free_count()) continue;
+      for (int half = 0; half < 2; ++half)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const double vp = Jp(3 * (P + a) + i, half * 3 * P + 3 * b + j);
+            const double vc = Jc(n + 3 * sa + i, half * n + 3 * sb + j);
+            jacobian_difference = std::max(jacobian_difference, std::abs(vp - vc));
+            jacobian_scale = std::max(jacobian_scale, std::abs(vc));
+          }
+    }
+  const double rhs_relative = rhs_difference / scale, jacobian_relative = jacobian_difference / jacobian_scale;
+  std::printf("plain loop against the book's forces: right-hand side %.1e, Jacobian %.1e (relative)\n",
+              rhs_relative, jacobian_relative);
+  if (!(rhs_relative < 1e-12 && jacobian_relative < 1e-12))
+    throw std::logic_error("ch10_peers: the plain loop and the book's force routine disagree");
+  write_text_fragment(dir + "/peers_check.md",
+                      format("At a perturbed, moving state the plain loop's accelerations agree with the book's "
+                             "to %.0e and its Jacobian to %.0e, relative to their largest entries.",
+                             std::max(rhs_relative, 1e-16), std::max(jacobian_relative, 1e-16)));
 }
 
 }  // namespace
@@ -324,68 +282,7 @@ int main(int argc, char** argv) {
     PlainSystem plain(p);
     CoreSystem core(scene);
 
-    // The plain loop and the book's forces must be the same model: compare the right-hand sides and the
-    // Jacobians at a perturbed, moving state (pinned rows excepted, which the core does not have).
-    {
-      std::vector<double> yp = plain.initial_state(), yc = core.initial_state();
-      const int P = scene.particle_count(), n = scene.dof_count();
-      for (int particle = 0; particle < P; ++particle) {
-        const int s = scene.slot(particle);
-        for (int k = 0; k < 3; ++k) {
-          const double dx = 1e-3 * std::sin(1.3 * (3 * particle + k)), dv = 0.1 * std::cos(0.7 * (3 * particle + k));
-          if (s < scene.free_count()) {
-            yp[3 * particle + k] += dx, yc[3 * s + k] += dx;
-            yp[3 * (P + particle) + k] += dv, yc[n + 3 * s + k] += dv;
-          }
-        }
-      }
-      std::vector<double> fp(yp.size()), fc(yc.size());
-      plain.rhs(yp.data(), fp.data());
-      core.rhs(yc.data(), fc.data());
-      double rhs_difference = 0, scale = 0;
-      for (int particle = 0; particle < P; ++particle) {
-        const int s = scene.slot(particle);
-        if (s >= scene.free_count()) continue;
-        for (int k = 0; k < 3; ++k) {
-          rhs_difference = std::max(rhs_difference, std::abs(fp[3 * (P + particle) + k] - fc[n + 3 * s + k]));
-          scale = std::max(scale, std::abs(fc[n + 3 * s + k]));
-        }
-      }
-      // Jacobians as dense matrices over the free coordinates (1200 x 1200 doubles each half: 46 MB in all).
-      const auto dense = [](OdeSystem& sys, const std::vector<double>& y) {
-        std::vector<sunindextype> starts(static_cast<std::size_t>(sys.size()) + 1), rows(static_cast<std::size_t>(sys.nonzeros()));
-        std::vector<double> values(rows.size());
-        sys.jacobian(y.data(), starts.data(), rows.data(), values.data());
-        Eigen::MatrixXd J = Eigen::MatrixXd::Zero(sys.size(), sys.size());
-        for (int c = 0; c < sys.size(); ++c)
-          for (sunindextype k = starts[c]; k < starts[c + 1]; ++k) J(rows[k], c) += values[k];
-        return J;
-      };
-      const Eigen::MatrixXd Jp = dense(plain, yp), Jc = dense(core, yc);
-      double jacobian_difference = 0, jacobian_scale = 0;
-      for (int a = 0; a < P; ++a)
-        for (int b = 0; b < P; ++b) {
-          const int sa = scene.slot(a), sb = scene.slot(b);
-          if (sa >= scene.free_count() || sb >= scene.free_count()) continue;
-          for (int half = 0; half < 2; ++half)
-            for (int i = 0; i < 3; ++i)
-              for (int j = 0; j < 3; ++j) {
-                const double vp = Jp(3 * (P + a) + i, half * 3 * P + 3 * b + j);
-                const double vc = Jc(n + 3 * sa + i, half * n + 3 * sb + j);
-                jacobian_difference = std::max(jacobian_difference, std::abs(vp - vc));
-                jacobian_scale = std::max(jacobian_scale, std::abs(vc));
-              }
-        }
-      const double rhs_relative = rhs_difference / scale, jacobian_relative = jacobian_difference / jacobian_scale;
-      std::printf("plain loop against the book's forces: right-hand side %.1e, Jacobian %.1e (relative)\n",
-                  rhs_relative, jacobian_relative);
-      if (!(rhs_relative < 1e-12 && jacobian_relative < 1e-12))
-        throw std::logic_error("ch10_peers: the plain loop and the book's force routine disagree");
-      write_text_fragment(dir + "/peers_check.md",
-                          format("At a perturbed, moving state the plain loop's accelerations agree with the book's "
-                                 "to %.0e and its Jacobian to %.0e, relative to their largest entries.",
-                                 std::max(rhs_relative, 1e-16), std::max(jacobian_relative, 1e-16)));
-    }
+    check_same_model(scene, plain, core, dir);
 
     // The reference: as in the chapter's study, RK4 at a quarter of its stable step.
     const double omega = lattice_fastest_frequency({p.stiffness, p.stiffness, p.stiffness, p.mass});
@@ -411,7 +308,7 @@ int main(int argc, char** argv) {
       if (out.ok) {
         const Vector x = system.positions(out.y);
         if (x.allFinite() && x.cwiseAbs().maxCoeff() < 100)
-          row.error = ch10::max_distance(x, reference);
+          row.error = largest_distance(x, reference);
         else
           row.ok = false, row.note = "diverged";
       }
@@ -465,7 +362,7 @@ int main(int argc, char** argv) {
       if (r.ok) {
         Vector all(3 * scene.particle_count());
         scene.all_positions(r.x, all);
-        row.error = ch10::max_distance(all, reference);
+        row.error = largest_distance(all, reference);
       }
       std::printf("  %-34s %-18s %7lld steps %8.4f s  error %.2e %s\n", row.program.c_str(), row.setting.c_str(),
                   row.steps, row.seconds, row.error, row.note.c_str());
@@ -474,7 +371,7 @@ int main(int argc, char** argv) {
     book("symplectic_euler", se_steps);
     book("rk4", rk4_steps);
     for (long long steps : quick ? std::vector<long long>{30} : std::vector<long long>{15, 30, 60})
-      book("ie_1newton_cg", steps);
+      book("implicit_euler/one/cg", steps);
     // [book_runs]
 
     // The table, and the comparison of the fastest run of each side at each accuracy.

@@ -12,10 +12,13 @@ namespace ch10 {
 
 class PlainFabric {
  public:
-  // M x N particles at (i d, j d, 0), corners pinned, structural, shear and flexion springs of stiffness K with
-  // the projected damper D, particle mass m, gravity g, every free particle starting at z velocity v0.
-  PlainFabric(int M, int N, double d, double K, double D, double m, double g, double v0)
-      : P_(M * N), K_(K), D_(D), m_(m), g_(g), v0_(v0), pinned_(static_cast<std::size_t>(P_), false) {
+  // M x N particles at (i d, j d, 0), corners pinned (or with `edge` the row j = N-1), structural, shear and
+  // flexion springs of stiffness K with the projected damper D, particle mass m, gravity g, every free particle
+  // starting at z velocity v0 plus, with `swing` w, a rigid turn w (N-1-j) d about the edge's line.
+  PlainFabric(int M, int N, double d, double K, double D, double m, double g, double v0, bool edge = false,
+              double swing = 0)
+      : P_(M * N), N_(N), d_(d), K_(K), D_(D), m_(m), g_(g), v0_(v0), swing_(swing),
+        pinned_(static_cast<std::size_t>(P_), false) {
     const auto id = [N](int i, int j) { return i * N + j; };
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j) {
@@ -26,7 +29,10 @@ class PlainFabric {
         spring(i + 1, j + 1), spring(i + 1, j - 1);  // shear
         spring(i + 2, j), spring(i, j + 2);          // flexion
       }
-    for (int c : {id(0, 0), id(M - 1, 0), id(0, N - 1), id(M - 1, N - 1)}) pinned_[static_cast<std::size_t>(c)] = true;
+    if (edge)
+      for (int i = 0; i < M; ++i) pinned_[static_cast<std::size_t>(id(i, N - 1))] = true;
+    else
+      for (int c : {id(0, 0), id(M - 1, 0), id(0, N - 1), id(M - 1, N - 1)}) pinned_[static_cast<std::size_t>(c)] = true;
     rest_.assign(3 * static_cast<std::size_t>(P_), 0.0);
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < N; ++j) rest_[3 * id(i, j)] = i * d, rest_[3 * id(i, j) + 1] = j * d;
@@ -41,7 +47,7 @@ class PlainFabric {
     std::vector<double> y(static_cast<std::size_t>(size()), 0.0);
     for (int p = 0; p < P_; ++p) {
       for (int k = 0; k < 3; ++k) y[3 * p + k] = rest_[3 * p + k];
-      if (!pinned(p)) y[3 * (P_ + p) + 2] = v0_;
+      if (!pinned(p)) y[3 * (P_ + p) + 2] = v0_ + swing_ * (N_ - 1 - p % N_) * d_;
     }
     return y;
   }
@@ -81,7 +87,10 @@ class PlainFabric {
   // velocity w = v_p - v_q, the block of f_p by x_p is
   //   Bx = -K [(1 - L0/l) I + (L0/l) u u^T] - (D/l) [u w^T (I - u u^T) + (w . u)(I - u u^T)],
   // the block of f_p by v_p is Bv = -D u u^T, and by symmetry of the pair f_q takes -B of x_p and +B of x_q.
-  void jacobian(const double* y, double* values) {
+  // With `definite` (Choi and Ko 2002, the matrix the book's Newton uses): Bx = -K [max(0, 1 - L0/l)(I - u u^T)
+  // + u u^T], a compressed spring's transverse term and the damper's d/dx dropped, so -Bx is positive
+  // semi-definite.
+  void jacobian(const double* y, double* values, bool definite = false) {
     const double* x = y;
     const double* v = y + 3 * P_;
     std::fill(values, values + nonzeros(), 0.0);
@@ -97,7 +106,10 @@ class PlainFabric {
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) {
           const double I = a == b ? 1.0 : 0.0, uu = u[a] * u[b];
-          Bx[a][b] = -K_ * ((1 - s.rest / l) * I + s.rest / l * uu) - D_ / l * (u[a] * wP[b] + wu * (I - uu));
+          if (definite)
+            Bx[a][b] = -K_ * (std::max(0.0, 1 - s.rest / l) * (I - uu) + uu);
+          else
+            Bx[a][b] = -K_ * ((1 - s.rest / l) * I + s.rest / l * uu) - D_ / l * (u[a] * wP[b] + wu * (I - uu));
           Bv[a][b] = -D_ * uu;
         }
       // Each spring adds its block to four 3 x 3 places of each half: (p, p), (q, p), (p, q), (q, q).
@@ -151,8 +163,8 @@ class PlainFabric {
     start_.push_back(static_cast<long>(row_.size()));
   }
 
-  int P_;
-  double K_, D_, m_, g_, v0_;
+  int P_, N_;
+  double d_, K_, D_, m_, g_, v0_, swing_;
   std::vector<bool> pinned_;
   std::vector<double> rest_;
   std::vector<Spring> springs_;

@@ -47,12 +47,12 @@ set ylabel "tensile spring stiffness K [N/m]"
 unset key
 W = data.'/map_winners.dat'
 # Colour by method name.
-color(s) = (s eq "symplectic_euler") ? 0x2ca02c : (s eq "rk4") ? 0x1f77b4 : (s eq "ie_1newton_cg") ? 0x9467bd : \
-           (s eq "ie_1newton_direct") ? 0xff7f0e : (s eq "ie_newton_direct") ? 0xd62728 : \
-           (s eq "local_global_10") ? 0xe377c2 : (s eq "local_global_50") ? 0x17becf : 0x8c564b
-short(s) = (s eq "symplectic_euler") ? "sympl. Euler" : (s eq "rk4") ? "RK4" : (s eq "ie_1newton_cg") ? "IE 1 it. CG" : \
-           (s eq "ie_1newton_direct") ? "IE 1 it. direct" : (s eq "ie_newton_direct") ? "IE Newton direct" : \
-           (s eq "local_global_10") ? "LG 10" : (s eq "local_global_50") ? "LG 50" : "IE Newton CG"
+color(s) = (s eq "symplectic_euler") ? 0x2ca02c : (s eq "rk4") ? 0x1f77b4 : (s eq "implicit_euler/one/cg") ? 0x9467bd : \
+           (s eq "implicit_euler/one/exact") ? 0xff7f0e : (s eq "implicit_euler/exact") ? 0xd62728 : \
+           (s eq "local_global") ? 0xe377c2 : (s eq "local_global/50it") ? 0x17becf : 0x8c564b
+short(s) = (s eq "symplectic_euler") ? "sympl. Euler" : (s eq "rk4") ? "RK4" : (s eq "implicit_euler/one/cg") ? "IE 1 it. CG" : \
+           (s eq "implicit_euler/one/exact") ? "IE 1 it. direct" : (s eq "implicit_euler/exact") ? "IE Newton direct" : \
+           (s eq "local_global") ? "LG 10" : (s eq "local_global/50it") ? "LG 50" : "IE Newton CG"
 do for [tol in "0.01 0.001"] {
   set title (tol eq "0.01" ? "largest position error 1 cm" : "largest position error 1 mm")
   plot W u ($1 == real(tol) ? $3 : 1/0):2:(sprintf("%s\n%.2g s", short(strcol(5)), $6)):(color(strcol(5))) \

@@ -1,14 +1,17 @@
 // Chapter 10's measuring tools (see study.hpp).
 #include "study.hpp"
 
+#include "integrators/configuration.hpp"
 #include "integrators/method_registry.hpp"
+#include "analysis/trajectory_measures.hpp"
 #include "model/fabric.hpp"
 #include "program/interrupt.hpp"
+#include "program/method_flags.hpp"
+#include "program/timing.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
-#include <ctime>
 #include <stdexcept>
 
 using namespace cloth;
@@ -25,84 +28,35 @@ SceneParams fabric(int n, double K) {
 
 namespace {
 
-// A method of the chapter, parsed from its key: a registry name as it stands ("symplectic_euler", "rk4"),
-// "ie_<newton|1newton>_<direct|cg>" for the registry's implicit Euler with full Newton or one iteration, on the
-// direct or the CG path, "local_global_<iterations>", "xpbd_<iterations>_<substeps>" (iterations per substep,
-// substeps per step) or "small_steps_<substeps>".
-struct Configuration {
-  std::string method;  ///< the registry's name
-  MethodSettings settings;
-  std::string detail;  ///< what the settings add to the registry's title
-};
-
-Configuration configuration(const std::string& key) {
-  Configuration c{key, {}, ""};
-  if (key.rfind("ie_", 0) == 0) {
-    c.method = "implicit_euler";
-    // Full Newton: the exact Jacobian (block LDU for the damped cloth), or the definite one with CG. From the flat
-    // sheet at rest a frame-sized step takes Newton through compressed, indefinite states, where its line search
-    // on the incremental potential may backtrack (Chapter 4); the cap of 100 is a safeguard. Its tolerance, 1e-6
-    // relative in the velocity, is a position error below 1e-6 h, far under every error this chapter measures.
-    NewtonSettings& newton = c.settings.newton;
-    newton.max_iterations = 100;
-    newton.tolerance = 1e-6;
-    const std::string rest = key.substr(3);
-    if (rest == "newton_direct" || rest == "1newton_direct") {
-      c.detail = ", direct";
-    } else if (rest == "newton_cg" || rest == "1newton_cg") {
-      newton.treatment = StiffnessTreatment::definite;
-      newton.solver = LinearSolverKind::cg;
-      newton.cg_tolerance = 1e-8;
-      c.detail = ", CG";
-    } else {
-      throw std::logic_error("ch10: unknown method " + key);
-    }
-    const bool one = rest.rfind("1newton", 0) == 0;
-    if (one) newton.variant = NewtonVariant::one;  // Baraff and Witkin's single linearised step
-    c.detail = (one ? ", 1 iteration" : ", Newton") + c.detail;
-  } else if (key.rfind("local_global_", 0) == 0) {
-    c.method = "local_global";
-    c.settings.local_global_iterations = std::stoi(key.substr(13));
-    c.detail = ", " + key.substr(13) + " iterations";
-  } else if (key.rfind("xpbd_", 0) == 0) {
-    c.method = "xpbd";
-    const std::size_t split = key.find('_', 5);
-    if (split == std::string::npos) throw std::logic_error("ch10: unknown method " + key);
-    c.settings.xpbd_iterations = std::stoi(key.substr(5, split - 5));
-    c.settings.substeps = std::stoi(key.substr(split + 1));
-    c.detail = ", " + key.substr(5, split - 5) + " iterations, " + key.substr(split + 1) + " substeps";
-  } else if (key.rfind("small_steps_", 0) == 0) {
-    c.method = "small_steps";
-    c.settings.substeps = std::stoi(key.substr(12));
-    c.detail = ", " + key.substr(12) + " substeps";
-  }
-  find_method(c.method);  // throws for a name the registry does not know
+// The chapter's settings for a method given by its one name (integrators/configuration.hpp): the Newton matrix by
+// the book's default rule unless the name chose it. From the flat sheet at rest a frame-sized step takes Newton
+// through compressed, indefinite states, where its line search on the incremental potential may backtrack
+// (Chapter 4); the cap of 100 is a safeguard. Its tolerance, 1e-6 relative in the velocity, is a position error
+// below 1e-6 h, far under every error this chapter measures.
+Configuration configuration(const std::string& name) {
+  Configuration c = parse_configuration(name);
+  NewtonSettings& newton = c.settings.newton;
+  newton.treatment = c.jacobian ? *c.jacobian : default_treatment(newton.solver, false);
+  newton.max_iterations = 100;
+  newton.tolerance = 1e-6;
+  newton.cg_tolerance = 1e-8;
   return c;
 }
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_method(const std::string& key, ForceField& field) {
-  const Configuration c = configuration(key);
+std::unique_ptr<Stepper> make_method(const std::string& name, ForceField& field) {
+  const Configuration c = configuration(name);
   return make_stepper(c.method, field, c.settings);
 }
 
-bool is_explicit(const std::string& key) {
-  const MethodFamily family = find_method(configuration(key).method).family;
+bool is_explicit(const std::string& name) {
+  const MethodFamily family = find_method(parse_configuration(name).method).family;
   return family == MethodFamily::explicit_runge_kutta || family == MethodFamily::partitioned ||
          family == MethodFamily::embedded_runge_kutta;
 }
 
-std::string label(const std::string& key) {
-  const Configuration c = configuration(key);
-  return find_method(c.method).title + c.detail;
-}
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+std::string label(const std::string& name) { return configuration_name(parse_configuration(name)); }
 
 namespace {
 
@@ -113,7 +67,7 @@ Run run_once(const Scene& scene, const std::string& method, double T, long long 
   r.x = scene.initial_positions();
   Vector v = scene.initial_velocities();
   const double h = T / static_cast<double>(steps);
-  const double t0 = cpu_seconds();
+  const double t0 = thread_cpu_seconds();
   for (long long k = 0; k < steps; ++k) {
     throw_if_interrupted();  // Ctrl-C ends the program between two steps (program/interrupt.hpp)
     if (!stepper->step(h, r.x, v)) {
@@ -127,7 +81,7 @@ Run run_once(const Scene& scene, const std::string& method, double T, long long 
       break;
     }
   }
-  r.seconds = cpu_seconds() - t0;
+  r.seconds = thread_cpu_seconds() - t0;
   r.counters = stepper->counters();
   return r;
 }
@@ -156,12 +110,6 @@ bool stays_bounded(const Scene& scene, const std::string& method, double h, int 
   return true;
 }
 
-double max_distance(const Vector& a, const Vector& b) {
-  double worst = 0;
-  for (Eigen::Index k = 0; k + 2 < a.size(); k += 3) worst = std::max(worst, (a.segment<3>(k) - b.segment<3>(k)).norm());
-  return worst;
-}
-
 Vector reference(const Scene& scene, double T, long long steps, bool check, double& agreement) {
   ForceField field(scene);
   auto rk4 = make_stepper("rk4", field);
@@ -176,7 +124,7 @@ Vector reference(const Scene& scene, double T, long long steps, bool check, doub
     auto rule38 = make_stepper("rule38", field);
     Vector y = scene.initial_positions(), w = scene.initial_velocities();
     for (long long k = 0; k < 2 * steps; ++k) rule38->step(h / 2, y, w);
-    agreement = max_distance(x, y);
+    agreement = largest_distance(x, y);
   }
   return x;
 }

@@ -1,5 +1,6 @@
-// Chapter 10's measuring tools: the chapter's methods by name, a run to T with the error at T against a reference,
-// thread-CPU timing, and the fabric scenes of the chapter (the same square metre at any resolution and stiffness).
+// Chapter 10's measuring tools: the chapter's methods by their one name, a run to T with the error at T against a
+// reference (timed by program/timing.hpp), and the fabric scenes of the chapter (the same square metre at any
+// resolution and stiffness).
 #pragma once
 
 #include "integrators/stepper.hpp"
@@ -16,18 +17,14 @@ namespace ch10 {
 /// m = 6.25e-4 kg at n = 20), one stiffness K for every family, D = 0.01, corners pinned, released from rest.
 cloth::SceneParams fabric(int n, double K);
 
-/// A method of the registry with the settings the chapter runs it with, by key: a registry name as it stands
-/// ("symplectic_euler", "rk4"); "ie_newton_direct", "ie_newton_cg", "ie_1newton_direct", "ie_1newton_cg" for
-/// implicit Euler with full Newton or one iteration (Baraff and Witkin 1998) on the direct or the CG path;
-/// "local_global_N" for local/global stepping with N iterations. Built by cloth::make_stepper.
-std::unique_ptr<cloth::Stepper> make_method(const std::string& key, cloth::ForceField& field);
-/// Whether the key's registry method is explicit (an explicit, embedded or partitioned Runge-Kutta method).
-bool is_explicit(const std::string& key);
-/// How the page names it: the registry's title and the settings ("implicit Euler, 1 iteration, CG").
-std::string label(const std::string& key);
-
-/// Thread CPU seconds (not counting time spent waiting for a core on a shared machine).
-double cpu_seconds();
+/// A method by its one composed name (integrators/configuration.hpp: "rk4", "implicit_euler/one/cg",
+/// "xpbd/16sub"), with the chapter's Newton settings (tolerance 1e-6, at most 100 iterations, CG to 1e-8) and the
+/// book's default rule for the Newton matrix. Built by cloth::make_stepper.
+std::unique_ptr<cloth::Stepper> make_method(const std::string& name, cloth::ForceField& field);
+/// Whether the name's registry method is explicit (an explicit, embedded or partitioned Runge-Kutta method).
+bool is_explicit(const std::string& name);
+/// Its one name as every table prints it (configuration_name: "local_global/10it" is "local_global").
+std::string label(const std::string& name);
 
 /// The final positions of a run of `steps` equal steps to T, or ok = false with where it stopped.
 struct Run {
@@ -45,9 +42,6 @@ Run run_to(const cloth::Scene& scene, const std::string& method, double T, long 
 /// Whether `method` at step h keeps the scene's rest state, seeded with 1e-6 m in every coordinate, within 1 m
 /// of rest for `steps` steps (the stable-step bisection of Chapter 10).
 bool stays_bounded(const cloth::Scene& scene, const std::string& method, double h, int steps);
-
-/// Largest distance between corresponding particles of two free-particle position vectors [m].
-double max_distance(const cloth::Vector& a, const cloth::Vector& b);
 
 /// A reference for T: RK4 with `steps` steps; when `check` it is compared with the 3/8 rule at twice as many
 /// steps and `agreement` is their largest difference (else -1).

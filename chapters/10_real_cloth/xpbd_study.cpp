@@ -12,6 +12,8 @@
 #include "program/output.hpp"
 #include "study.hpp"
 
+#include "analysis/trajectory_measures.hpp"
+
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
@@ -85,8 +87,8 @@ std::vector<std::string> gap_row(const Scene& scene, const State& start, double 
     xpbd = start;
     make_stepper("xpbd", field, settings)->step(h, xpbd.x, xpbd.v);
     throw_if_interrupted();
-    if (previous.x.size() != 0) change = ch10::max_distance(xpbd.x, previous.x);
-    gap = ch10::max_distance(xpbd.x, ie.x);
+    if (previous.x.size() != 0) change = largest_distance(xpbd.x, previous.x);
+    gap = largest_distance(xpbd.x, ie.x);
     previous = xpbd;
   }
   Vector f(xpbd.x.size());
@@ -97,9 +99,9 @@ std::vector<std::string> gap_row(const Scene& scene, const State& start, double 
   const Eigen::SparseLU<SparseMatrix> lu(A);
   const Vector predicted = lu.solve(r);
   std::vector<std::string> row = head;
-  row.insert(row.end(), {format_number(ch10::max_distance(ie.x, start.x), 3), format_number(gap, 3),
-                         format_number(ch10::max_distance(predicted, Vector::Zero(predicted.size())), 3),
-                         format_number(ch10::max_distance(xpbd.x - ie.x, predicted), 2),
+  row.insert(row.end(), {format_number(largest_distance(ie.x, start.x), 3), format_number(gap, 3),
+                         format_number(largest_distance(predicted, Vector::Zero(predicted.size())), 3),
+                         format_number(largest_distance(xpbd.x - ie.x, predicted), 2),
                          std::to_string(settings.xpbd_iterations) + " (" + format_number(change, 2) + ")" +
                              (change < 1e-2 * gap ? "" : ": not settled")});
   return row;
@@ -137,7 +139,7 @@ std::vector<std::string> strain_row(const Scene& scene, const std::string& metho
   throw_if_interrupted();
   return {"`" + method + "`", std::to_string(iterations), std::to_string(substeps),
           std::to_string(iterations * substeps), format_number(100 * strain, 3) + " %",
-          format_number(ch10::max_distance(s.x, reference), 3)};
+          format_number(largest_distance(s.x, reference), 3)};
 }
 
 void strain_table(const std::string& dir, const std::string& command) {
@@ -145,7 +147,7 @@ void strain_table(const std::string& dir, const std::string& command) {
   const Scene scene(curtain(1e5));
   std::vector<double> strains;
   const State truth = curtain_at(scene, T, &strains);
-  const double motion = ch10::max_distance(truth.x, scene.initial_positions());
+  const double motion = largest_distance(truth.x, scene.initial_positions());
   MarkdownTable table({"method", "iterations", "substeps per 1/60 s", "sweeps per 1/60 s", "largest strain",
                        "largest position difference at T [m]"},
                       "lrrrrr");

@@ -1,0 +1,46 @@
+// Chapter 10's map: which program is fastest at each accuracy, for the curtain and the swinging curtain at 20 x 20
+// to 160 x 160 particles on the same square metre and tensile stiffness over three decades. A part of the map is
+// one scene at one resolution and one stiffness ("curtain_40_1e4"); measuring a part writes map_<part>.dat, and
+// the tables are built from whichever parts' files exist, so that the full sweep can run for hours part by part.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace ch10 {
+
+/// A part of the map: a scene, a resolution and a stiffness.
+struct MapPart {
+  std::string scene;  ///< "curtain" (released flat) or "swing" (thrown down at 4 rad/s)
+  int n = 20;         ///< particles per side
+  double K = 1e5;     ///< tensile stiffness of every spring [N/m]
+  [[nodiscard]] std::string name() const;
+};
+
+/// The part named `SCENE_N_1eE` (K = 10^E). Throws cloth::InputError naming what is accepted.
+MapPart parse_map_part(const std::string& name);
+/// Every part of the full map, cheapest first.
+std::vector<MapPart> full_map();
+
+/// How a part is measured: no single run longer than `run_budget` seconds is started (a ladder of finer settings
+/// stops when the next run's predicted time would exceed it), and the reference is Dormand-Prince at
+/// `reference_tolerance`.
+struct SweepPlan {
+  double run_budget = 600;
+  double reference_tolerance = 1e-9;
+  int max_runs_per_series = 12;
+  /// A rung predicted slower than this many times the fastest run that already reached 1 mm is not started: it
+  /// could win no cell of the book's or the peers' columns, only the implicit column, where it is then predicted.
+  double prune_factor = 20;
+};
+
+/// Measures `part` and writes `DIR/map_PART.dat`; `command` is the line that measures it again. Returns the
+/// reference's processor seconds (for the cost model of the next parts).
+double measure_part(const MapPart& part, const SweepPlan& plan, const std::string& dir, const std::string& command);
+
+/// Reads every `map_PART.dat` in `dir` and writes the map's fragments there (map_curtain.md, map_swing.md);
+/// returns their names. With `predict_missing`, each part of the full map without a file gets the explicit
+/// winners of the nearest smaller measured grid scaled by the cost model, marked as predicted.
+std::vector<std::string> write_map_tables(const std::string& dir, const std::string& command, bool predict_missing);
+
+}  // namespace ch10
