@@ -7,6 +7,7 @@
 #include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
+#include "program/output_spec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +17,16 @@
 using namespace cloth;
 
 namespace {
+
+// The files the program writes into --out, declared once (program/output_spec.hpp).
+OutputList outputs() {
+  return {{"spring_counts.md", OutputKind::fragment, "each family's springs beside the closed forms"},
+          {"gradient_check.md", OutputKind::fragment, "f against -grad E on a randomly perturbed sheet"},
+          {"gradient_check.txt", OutputKind::data, "the largest relative difference of that check"},
+          {"force_extension.dat", OutputKind::figure_input, "force and energy of one spring per family against l"},
+          {"stretch_energy.dat", OutputKind::figure_input, "energy of the uniformly stretched sheet, per family"},
+          {"springs.dat", OutputKind::figure_input, "one segment (flexion: an arc) per spring of the rest mesh"}};
+}
 
 // [gradient_check]
 // Largest relative difference between f(x) and -grad E(x), the gradient taken by central differences
@@ -49,6 +60,7 @@ int main(int argc, char** argv) {
   // An experiment program: the scene flags it builds its sheet from, no damping (the check needs conservative
   // forces) and no run flags.
   cli.use_common({"--grid", "--spacing", "--mass", "--K", "--springs", "--pins", "--out"});
+  cli.declare_outputs([](const Options&) { return outputs(); });
   return run_program(cli.program(), [&] {
     Options opt = cli.parse(argc, argv);
     opt.scene.damping = 0;  // the gradient check needs conservative forces
@@ -60,8 +72,7 @@ int main(int argc, char** argv) {
     require_memory(static_cast<double>(opt.scene.grid.M) * opt.scene.grid.N * explicit_bytes_per_particle(), "--grid",
                    "the scene");
     const Scene scene(opt.scene);
-    prepare_outputs(opt.run.out_dir, {"force_extension.dat", "stretch_energy.dat", "springs.dat", "gradient_check.txt",
-                                      "spring_counts.md", "gradient_check.md"});
+    prepare_outputs(opt.run.out_dir, outputs());
     const std::string dir = opt.run.out_dir + "/";
     const Grid& g = scene.grid();
 

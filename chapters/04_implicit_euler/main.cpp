@@ -171,21 +171,31 @@ std::string report_folder(const char* variant, const ReportCase& c) { return std
 // stiff cloth at a large step, and conjugate gradients.
 const char* const measured_run_folders[] = {"definite_K50_D0", "stiff_K100000_h0.1", "cg_K50_D0"};
 
-std::vector<std::string> report_outputs() {
-  std::vector<std::string> names = {"comparison.dat", "residuals.dat", "iterations_symmetric.dat",
-                                    "iterations_definite.dat", "iterations_symmetric_K200_D20.dat",
-                                    "iterations_exact_K200_D20.dat"};
-  // The page's tables, sentences and transcript (program/fragment.hpp).
-  for (const char* fragment : {"report_runs.md", "stiff_step.md", "jacobian_treatments.md", "definite_failure.txt",
-                               "stiff_large_step.md", "cg_run.md", "rk4_agreement.md", "rk4_halving_ratio.md",
-                               "flat_step.md", "curtain_runs.md", "frozen_dampers.md"})
-    names.emplace_back(fragment);
+// What --report-runs writes into --out, declared once (program/output_spec.hpp).
+OutputList report_outputs() {
+  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment, data = OutputKind::data;
+  OutputList files = {
+      {"comparison.dat", data, "full Newton against one iteration at each (K, D): iterations, energies"},
+      {"residuals.dat", figure, "the residual of each Newton iteration on one stiff step"},
+      {"iterations_symmetric.dat", figure, "Newton iterations per step, symmetric Hessian, K = 50, D = 0"},
+      {"iterations_definite.dat", figure, "Newton iterations per step, definite matrix, K = 50, D = 0"},
+      {"iterations_symmetric_K200_D20.dat", data, "Newton iterations per step, symmetric Jacobian, K = 200, D = 20"},
+      {"iterations_exact_K200_D20.dat", data, "Newton iterations per step, exact Jacobian, K = 200, D = 20"},
+      {"report_runs.md", fragment, "full Newton against one iteration at the report's (K, D)"},
+      {"stiff_step.md", fragment, "the residuals of one stiff step and their ratios"},
+      {"jacobian_treatments.md", fragment, "what each Newton matrix costs in iterations"},
+      {"definite_failure.txt", fragment, "the transcript of the definite matrix's failed run"},
+      {"stiff_large_step.md", fragment, "the stiff cloth at a large step"},
+      {"cg_run.md", fragment, "the run with conjugate gradients"},
+      {"rk4_agreement.md", fragment, "implicit Euler's distance from RK4 at three steps"},
+      {"rk4_halving_ratio.md", fragment, "what halving h divides that distance by"},
+      {"flat_step.md", fragment, "the residual search's history on the flat curtain"},
+      {"curtain_runs.md", fragment, "the curtain under the minimising Newton step"},
+      {"frozen_dampers.md", fragment, "dampers frozen at the start of the step against at the free flight"}};
   for (const ReportCase& c : report_cases)
-    for (const char* variant : {"full", "one"})
-      for (const std::string& file : run_output_names()) names.push_back(report_folder(variant, c) + "/" + file);
-  for (const char* folder : measured_run_folders)
-    for (const std::string& file : run_output_names()) names.push_back(std::string(folder) + "/" + file);
-  return names;
+    for (const char* variant : {"full", "one"}) files = files + run_output_specs(report_folder(variant, c), {"energy.dat"});
+  for (const char* folder : measured_run_folders) files = files + run_output_specs(folder);
+  return files;
 }
 
 // What the Newton matrix's treatment costs: the exact (= symmetric) Hessian against the definite matrix on the
@@ -366,6 +376,7 @@ int main(int argc, char** argv) {
                  "the report's (K, D) = (50,0), (200,0), (200,20) with full and one-iteration Newton, a stiff step's "
                  "residuals and the definite matrix at K = 50 (the chapter's figures; exit 0 even when a run fails)",
                  [&] { want_report_runs = true; });
+  cli.declare_outputs([&](const Options&) { return want_report_runs ? report_outputs() : run_output_specs(); });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     const NewtonSettings& newton = flags.given();
@@ -377,7 +388,7 @@ int main(int argc, char** argv) {
     if (!want_report_runs) {
       const NewtonSettings settings = newton_for(opt.scene.stiffness, opt.scene.damping);
       require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles));
-      prepare_outputs(opt.run.out_dir, run_output_names(), report_outputs());
+      prepare_outputs(opt.run.out_dir, run_output_specs(), report_outputs());
       return run_cloth(opt.scene, opt.run, settings, opt.run.out_dir, cli.program()).status;
     }
     // Every run of --report-runs is checked, with the values it uses, before the first one starts.
@@ -395,7 +406,7 @@ int main(int argc, char** argv) {
       throw InputError("--linear-solver cg: --report-runs compares the symmetric and the definite Newton matrix, and "
                        "cg takes only the definite one: expected ldlt, ldu or lu");
     require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles), "--frames", 2);
-    prepare_outputs(opt.run.out_dir, report_outputs(), run_output_names());
+    prepare_outputs(opt.run.out_dir, report_outputs(), run_output_specs());
     return report_runs(opt, newton_for, newton, cli.program(), reader_command(argc, argv));
   });
 }

@@ -24,15 +24,27 @@ using namespace ch07;
 
 namespace {
 
-// The files the program writes into --out.
-std::vector<std::string> output_names() {
-  std::vector<std::string> names = {"regions.dat", "predicted_rest.dat", "predicted.dat", "measured.dat",
-                                    "implicit_euler.txt", "summary.txt", "spectra.txt", "grid_summary.md",
-                                    "damped_reach.md", "hmax_table.md"};
+// The files the program writes into --out, declared once (program/output_spec.hpp).
+cloth::OutputList outputs() {
+  using cloth::OutputKind;
+  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment, data = OutputKind::data;
+  cloth::OutputList files = {
+      {"regions.dat", figure, "|R(z)| over the complex plane, every tableau"},
+      {"predicted_rest.dat", figure, "h_max predicted from the rest spectrum against K"},
+      {"predicted.dat", figure, "h_max predicted at rest and at the sagged equilibrium, per K and D"},
+      {"measured.dat", figure, "h_max measured by bisection, with its bracket"},
+      {"summary.txt", data, "the headline numbers, key = value"},
+      {"implicit_euler.txt", fragment, "implicit Euler's probe runs at h = 0.1 s"},
+      {"spectra.txt", fragment, "the transcript of the spectra's largest eigenvalues"},
+      {"grid_summary.md", fragment, "the grid's fastest modes and reach, for the larger grid's section"},
+      {"damped_reach.md", fragment, "how far the damped modes reach along the real axis"},
+      {"hmax_table.md", fragment, "predicted against measured h_max"}};
   for (const cloth::ReportCase& c : cloth::report_cases)
-    for (const char* state : {"rest", "sagged"}) names.push_back(std::string("spectrum_") + state + "_" + c.name() + ".dat");
-  names.push_back("run_time.md");  // written last: the whole run's time
-  return names;
+    for (const char* state : {"rest", "sagged"})
+      files.push_back({std::string("spectrum_") + state + "_" + c.name() + ".dat", figure,
+                       std::string("h lambda of the ") + state + " cloth, h = --dt"});
+  files.push_back({"run_time.md", fragment, "how long the whole run took (written last)"});
+  return files;
 }
 
 // What the sweep needs before anything runs: a cloth that hangs (its sagged equilibrium is what the predictions
@@ -102,10 +114,11 @@ int main(int argc, char** argv) {
     settings.run_budget = cloth::parse_number(s);
     if (settings.run_budget < 0) throw cloth::InputError("expected a number >= 0");
   });
+  cli.declare_outputs([](const cloth::Options&) { return outputs(); });
   return cloth::run_program(cli.program(), [&] {
     const cloth::Options opt = cli.parse(argc, argv);
     check_scene(opt.scene, settings.threads);
-    cloth::prepare_outputs(opt.run.out_dir, output_names());
+    cloth::prepare_outputs(opt.run.out_dir, outputs());
     const std::string& dir = opt.run.out_dir;
     const SweepSettings sweep = sweep_settings(full, settings, opt.run.t_end);
     try {

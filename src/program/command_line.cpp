@@ -179,6 +179,8 @@ void CommandLine::add_switch(std::string flag, std::string help, std::function<v
   chapter_flags_.push_back({std::move(flag), "", std::move(help), {}, std::move(set)});
 }
 
+void CommandLine::declare_outputs(std::function<OutputList(const Options&)> outputs) { outputs_ = std::move(outputs); }
+
 std::string CommandLine::usage() const {
   std::ostringstream u;
   const auto line = [&u](std::string head, const std::string& text, const std::string& fallback) {
@@ -201,6 +203,9 @@ std::string CommandLine::usage() const {
       line(std::string(f.name) + " " + f.value_name, accepted, fallback);
     }
   line("--help", "this text", "");
+  if (outputs_)
+    line("--list-outputs", "print the files the run the other flags describe writes into --out (name, kind: fragment, "
+                           "figure_input or data, what it holds) instead of running", "");
   if (!chapter_flags_.empty()) {
     u << "\nChapter flags:\n";
     for (const Flag& f : chapter_flags_) line(f.name + (f.value_name.empty() ? "" : " " + f.value_name), f.help, "");
@@ -225,11 +230,16 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
     }
   }
   std::vector<std::pair<std::string, std::string>> given;  // flag and value, to refuse a flag given twice
+  bool list_outputs = false;
   for (int k = 1; k < argc; ++k) {
     const std::string flag = argv[k];
     if (flag == "--help" || flag == "-h") {
       std::cout << usage();
       throw HelpRequested{};
+    }
+    if (flag == "--list-outputs" && outputs_) {
+      list_outputs = true;
+      continue;
     }
     const Flag* chapter = nullptr;
     for (const Flag& f : chapter_flags_)
@@ -296,6 +306,10 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
     require_memory(static_cast<double>(opt.scene.grid.M) * opt.scene.grid.N * explicit_bytes_per_particle(), "--grid",
                    "a run on a " + std::to_string(opt.scene.grid.M) + "x" + std::to_string(opt.scene.grid.N) + " grid",
                    ": expected a smaller grid");
+  if (list_outputs) {
+    std::cout << output_listing(outputs_(opt));
+    throw HelpRequested{};
+  }
   return opt;
 }
 

@@ -5,6 +5,7 @@
 #include "base/parse_number.hpp"  // parse_number, parse_integer, parse_count: the flags' one rule
 #include "integrators/simulate.hpp"
 #include "model/scene.hpp"
+#include "program/output_spec.hpp"
 
 #include <functional>
 #include <initializer_list>
@@ -55,6 +56,11 @@ class CommandLine {
   /// A chapter flag without a value.
   void add_switch(std::string flag, std::string help, std::function<void()> set);
 
+  /// Declares the files a run writes into --out (program/output_spec.hpp), as a function of the parsed flags, and
+  /// adds `--list-outputs`: parse then prints them (output_listing) instead of running, and ends as for `--help`.
+  /// The program prepares --out from the same function, so the list the build checks is the one the run uses.
+  void declare_outputs(std::function<OutputList(const Options&)> outputs);
+
   /// Parses argv. Throws InputError naming the flag on any bad input (a flag given twice included),
   /// HelpRequested after printing `--help`. When the program uses the run flags, also checks the run they describe
   /// before anything runs: the number of steps, the numbers of the model at t = 0 (limits.hpp), and the memory of
@@ -76,6 +82,7 @@ class CommandLine {
   std::vector<std::string> common_;  ///< the common flags accepted, in the order `--help` lists them
   std::vector<std::pair<std::string, std::string>> defaults_;  ///< the program's own defaults: flag, value
   std::vector<Flag> chapter_flags_;
+  std::function<OutputList(const Options&)> outputs_;  ///< the declared outputs, when the program declared them
 };
 
 /// Thrown by CommandLine::parse after it printed the usage for `--help`.
