@@ -92,10 +92,11 @@ void write_stiff_step(const std::vector<double>& r, const std::string& dir, cons
   OutputFile file(dir + "/residuals.dat");
   std::FILE* out = file.get();
   std::fprintf(out, "# first step of the report scene, K = 1e5, D = 0, h = 0.01, exact Jacobian, LU\n");
-  std::fprintf(out, "# k |r_k|_inf |r_k|/|r_(k-1)|^2\n");
+  std::fprintf(out, "# k |r_k|_inf |r_k|/|r_(k-1)|^2   (? : no ratio at k = 0, gnuplot's missing value)\n");
   std::printf("stiff step (K = 1e5, h = 0.01, exact Jacobian, LU): |r_k|_inf =");
   for (std::size_t k = 0; k < r.size(); ++k) {
-    std::fprintf(out, "%zu %.6e %.6e\n", k, r[k], k ? r[k] / (r[k - 1] * r[k - 1]) : NAN);
+    if (k == 0) std::fprintf(out, "%zu %.6e ?\n", k, r[k]);
+    else std::fprintf(out, "%zu %.6e %.6e\n", k, r[k], r[k] / (r[k - 1] * r[k - 1]));
     std::printf(" %.3g", r[k]);
   }
   std::printf("\n");

@@ -12,10 +12,9 @@
 #include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
+#include "program/timing.hpp"
 
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -75,11 +74,11 @@ SweepSettings sweep_settings(bool full, SweepSettings sweep, double T) {
 }
 
 // run_time.md: how long the run took, from the start of main(), in wall-clock time and in processor time summed
-// over its threads, with the command that measured it.
-void write_run_time(const std::string& dir, const std::string& command, std::chrono::steady_clock::time_point started,
-                    std::clock_t cpu_started, int threads) {
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  const double cpu = static_cast<double>(std::clock() - cpu_started) / CLOCKS_PER_SEC;
+// over its threads (program/timing.hpp), with the command that measured it.
+void write_run_time(const std::string& dir, const std::string& command, double wall_started, double cpu_started,
+                    int threads) {
+  const double wall = cloth::wall_seconds() - wall_started;
+  const double cpu = cloth::process_cpu_seconds() - cpu_started;
   cloth::write_text_fragment(dir + "/run_time.md",
                              "`" + command + "` took " + cloth::format_fixed(wall, 1) + " s of wall-clock time and " +
                                  cloth::format_fixed(cpu, 1) + " s of processor time on " + std::to_string(threads) +
@@ -89,8 +88,7 @@ void write_run_time(const std::string& dir, const std::string& command, std::chr
 }  // namespace
 
 int main(int argc, char** argv) {
-  const auto started = std::chrono::steady_clock::now();
-  const std::clock_t cpu_started = std::clock();
+  const double wall_started = cloth::wall_seconds(), cpu_started = cloth::process_cpu_seconds();
   cloth::CommandLine cli("ch07_stability",
                          "Chapter 7: stability regions from the Butcher tableaus, the cloth's spectrum over them, "
                          "predicted\nand measured largest stable steps h_max over K in [10, 1e5] and D in {0, 20}.");
@@ -131,7 +129,7 @@ int main(int argc, char** argv) {
       const std::string command = cloth::reader_command(argc, argv);
       for (const auto& entry : hmax_sweep(dir, opt.scene, rest, equilibria, sweep, command)) summary.push_back(entry);
       cloth::write_key_values(dir + "/summary.txt", summary);
-      write_run_time(dir, command, started, cpu_started, sweep.threads);
+      write_run_time(dir, command, wall_started, cpu_started, sweep.threads);
     } catch (const NoEquilibrium& e) {
       std::fprintf(stderr, "%s: %s\n", cli.program().c_str(), e.what());
       return 3;
