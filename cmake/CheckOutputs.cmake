@@ -4,8 +4,9 @@
 #  - a declared fragment that no page includes under any of the program's plot runs (RUNS);
 #  - with WRITTEN: a declared file the run did not write into WRITTEN, or a file it wrote there but did not declare.
 # The plot runs call it after each run (cloth_add_plot), and CTest calls it as the test outputs_RUN.
+# With REFERENCE it also writes the declaration as a Markdown table there, for the book's appendix on the programs.
 #   cmake -DPROGRAM=exe "-DARGS=a|b" -DRUN=name "-DRUNS=name|name_60" -DSOURCE=<repo> [-DWRITTEN=<folder>]
-#         [-DRUN_FIRST=ON] -P CheckOutputs.cmake
+#         [-DRUN_FIRST=ON] [-DREFERENCE=file.md] -P CheckOutputs.cmake
 # With RUN_FIRST the script makes the run itself (`exe ARGS --out WRITTEN`, after emptying WRITTEN): the test's way.
 string(REPLACE "|" ";" args "${ARGS}")
 string(REPLACE "|" ";" runs "${RUNS}")
@@ -30,6 +31,8 @@ if(NOT status EQUAL 0)
 endif()
 set(declared "")
 set(fragments "")
+set(table "| file | read by | holds |\n|---|---|---|\n")
+string(REPLACE ";" "," listing "${listing}")  # a ';' in a description would split CMake's list
 string(REPLACE "\n" ";" lines "${listing}")
 foreach(line IN LISTS lines)
   if(line STREQUAL "")
@@ -38,7 +41,16 @@ foreach(line IN LISTS lines)
   string(REPLACE "\t" ";" fields "${line}")
   list(GET fields 0 name)
   list(GET fields 1 kind)
+  list(GET fields 2 holds)
   list(APPEND declared "${name}")
+  set(reader "a page (fragment)")
+  if(kind STREQUAL "figure_input")
+    set(reader "a figure")
+  elseif(kind STREQUAL "data")
+    set(reader "the reader")
+  endif()
+  string(REPLACE "|" "&#124;" holds "${holds}")  # a "|" would end the cell
+  string(APPEND table "| `${name}` | ${reader} | ${holds} |\n")
   if(kind STREQUAL "fragment")
     list(APPEND fragments "${name}")
   endif()
@@ -91,6 +103,10 @@ if(WRITTEN)
       list(APPEND problems "${program_name} wrote ${name}, which it does not declare")
     endif()
   endforeach()
+endif()
+
+if(REFERENCE)
+  file(WRITE "${REFERENCE}" "${table}")
 endif()
 
 if(problems)

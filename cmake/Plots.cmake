@@ -20,7 +20,8 @@ add_custom_target(plots)
 # page includes fails the run. The same check is the test outputs_run_name, on the declaration and the pages alone,
 # or, given TEST_ARGS (a small, quick version of the run: `--grid 6x6 --t-end 0.05`), on a run with ARGS TEST_ARGS
 # too. The program's plot runs are collected on its target (CLOTH_PLOT_RUNS), so that a fragment included only from
-# another run's folder (ch07_stability_60/run_time.md) counts as included.
+# another run's folder (ch07_stability_60/run_time.md) counts as included. The declaration is also written as a
+# table for the book's appendix on the programs (build/plots/data/programs/run_name_outputs.md).
 # FRAGMENTS, for a program that does not declare its outputs yet: the files of that folder the chapter's page
 # includes (`\include{doc} run_name/table.md`, see src/program/fragment.hpp); the run fails when one is missing.
 function(cloth_add_plot)
@@ -43,7 +44,9 @@ function(cloth_add_plot)
     set(check -DPROGRAM=${P_TARGET} "-DFILES=${fragment_list}" -P ${PROJECT_SOURCE_DIR}/cmake/RequireFragments.cmake)
   else()
     set(check -DPROGRAM=$<TARGET_FILE:${P_TARGET}> "-DARGS=${args_list}" -DRUN=${P_NAME} "-DRUNS=${runs}"
-              -DSOURCE=${PROJECT_SOURCE_DIR} -DWRITTEN=${data} -P ${PROJECT_SOURCE_DIR}/cmake/CheckOutputs.cmake)
+              -DSOURCE=${PROJECT_SOURCE_DIR} -DWRITTEN=${data}
+              -DREFERENCE=${CLOTH_PLOT_DATA_DIR}/programs/${P_NAME}_outputs.md
+              -P ${PROJECT_SOURCE_DIR}/cmake/CheckOutputs.cmake)
     list(JOIN P_TEST_ARGS "|" test_args_list)
     set(test_run "")
     if(P_TEST_ARGS)
@@ -71,7 +74,7 @@ function(cloth_add_plot)
     OUTPUT ${stamp}
     BYPRODUCTS ${figures} ${fragments}
     COMMAND ${CMAKE_COMMAND} -E rm -rf ${data}
-    COMMAND ${CMAKE_COMMAND} -E make_directory ${CLOTH_PLOT_DIR}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${CLOTH_PLOT_DIR} ${CLOTH_PLOT_DATA_DIR}/programs
     COMMAND $<TARGET_FILE:${P_TARGET}> ${P_ARGS} --out ${data}
     COMMAND ${CMAKE_COMMAND} ${check}
     COMMAND ${draw} "${draw_expression}" ${script}

@@ -188,7 +188,7 @@ std::string CommandLine::usage() const {
     if (head.size() < 37) head.resize(37, ' ');
     u << head << " " << text << (fallback.empty() ? "" : " (default " + fallback + ")") << "\n";
   };
-  u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (the book's model page, docs/model.md):\n";
+  u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (the book's appendix on the programs, docs/back_matter/appendix_programs.md):\n";
   for (const CommonFlag& f : common_flags)
     if (uses(f.name)) {
       std::string accepted = f.accepted;
@@ -216,6 +216,37 @@ std::string CommandLine::usage() const {
   return u.str();
 }
 
+std::string CommandLine::markdown_reference() const {
+  // A table cell holds no '|' (it would end the cell: the character entity stands for it) and shows flags and
+  // values as code, each alternative of a value as code of its own.
+  const auto cell = [](const std::string& text) {
+    std::string out;
+    for (const char c : text) out += c == '|' ? std::string("&#124;") : std::string(1, c);
+    return out;
+  };
+  const auto code = [](const std::string& text) {
+    std::string out = "`";
+    for (const char c : text) out += c == '|' ? std::string("` or `") : std::string(1, c);
+    return out + "`";
+  };
+  std::ostringstream md;
+  md << "| common flag | accepts | default here |\n|---|---|---|\n";
+  for (const CommonFlag& f : common_flags)
+    if (uses(f.name)) {
+      std::string fallback = std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback);
+      for (const auto& [name, value] : defaults_)
+        if (name == f.name) fallback = value;
+      md << "| " << code(std::string(f.name) + " " + f.value_name) << " | " << cell(f.accepted) << " | "
+         << (fallback.find(' ') != std::string::npos ? fallback : fallback.empty() ? "" : code(fallback)) << " |\n";
+    }
+  if (!chapter_flags_.empty()) {
+    md << "\n| " << program_ << "'s own flag | meaning |\n|---|---|\n";
+    for (const Flag& f : chapter_flags_)
+      md << "| " << code(f.name + (f.value_name.empty() ? "" : " " + f.value_name)) << " | " << cell(f.help) << " |\n";
+  }
+  return md.str();
+}
+
 Options CommandLine::parse(int argc, const char* const* argv) const {
   Options opt;
   opt.run.out_dir = program_;
@@ -235,6 +266,10 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
     const std::string flag = argv[k];
     if (flag == "--help" || flag == "-h") {
       std::cout << usage();
+      throw HelpRequested{};
+    }
+    if (flag == "--help-markdown") {  // the book's appendix on the programs reads it (cmake/ProgramReference.cmake)
+      std::cout << markdown_reference();
       throw HelpRequested{};
     }
     if (flag == "--list-outputs" && outputs_) {

@@ -1,5 +1,6 @@
-// The one command-line contract of the model page, shared by every chapter program: the common flags (scene and
-// run), chapter-specific flags on top, and strict validation (one clear line and exit status 2 on bad input).
+// The one command-line contract of the programs (the book's appendix on the programs), shared by every chapter
+// program: the common flags (scene and run), chapter-specific flags on top, and strict validation (one clear line
+// and exit status 2 on bad input).
 #pragma once
 
 #include "base/parse_number.hpp"  // parse_number, parse_integer, parse_count: the flags' one rule
@@ -68,6 +69,9 @@ class CommandLine {
   Options parse(int argc, const char* const* argv) const;
 
   [[nodiscard]] std::string usage() const;
+  /// The flags the program accepts as Markdown tables for the book's appendix on the programs (`--help-markdown`
+  /// prints it): the common flags it uses with what each accepts and its default here, then the chapter's own.
+  [[nodiscard]] std::string markdown_reference() const;
   [[nodiscard]] const std::string& program() const { return program_; }
   /// Whether the program accepts the common flag `flag`.
   [[nodiscard]] bool uses(const std::string& flag) const;
