@@ -7,6 +7,7 @@
 
 #include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cloth {
@@ -24,8 +25,12 @@ const char* output_kind_name(OutputKind kind);
 /// One file a program writes: its path relative to --out ("report_runs.md", "full_K50_D0/run.txt"), its kind, and
 /// what it holds, in a few words.
 struct OutputSpec {
+  // All three, always: a list of bare names ({"a.md", "b.dat"}) stays a list of names, not of declarations.
+  OutputSpec(std::string name_, OutputKind kind_, std::string holds_)
+      : name(std::move(name_)), kind(kind_), holds(std::move(holds_)) {}
+
   std::string name;
-  OutputKind kind = OutputKind::data;
+  OutputKind kind;
   std::string holds;
 };
 
