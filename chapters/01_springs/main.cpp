@@ -206,7 +206,7 @@ int main(int argc, char** argv) {
     require_memory(static_cast<double>(opt.scene.grid.M) * opt.scene.grid.N * explicit_bytes_per_particle(), "--grid",
                    "the scene");
     const Scene scene(opt.scene);
-    prepare_outputs(opt.run.out_dir, outputs());
+    prepare_declared_outputs(opt.run.out_dir, outputs());
     const std::string dir = opt.run.out_dir + "/";
     const std::string command = reader_command(argc, argv);
     spring_counts(scene, dir, command);             // how many springs of each family: spring_counts.md

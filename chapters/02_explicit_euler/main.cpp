@@ -179,7 +179,7 @@ int main(int argc, char** argv) {
     // Every run of --report-runs is checked with the values it uses, before the first one starts.
     if (report_runs)
       for (const ReportCase& c : report_cases) require_representable(with_case(opt.scene, c), opt.run);
-    prepare_outputs(opt.run.out_dir, outputs_of(single_spring, report_runs),
+    prepare_declared_outputs(opt.run.out_dir, outputs_of(single_spring, report_runs),
                     outputs_of(false, false) + outputs_of(false, true));  // what any mode writes
     if (single_spring) {
       measure_single_spring(single_spring_params(opt.scene.stiffness, 0), opt.run, opt.run.out_dir);

@@ -160,7 +160,7 @@ int main(int argc, char** argv) {
     OutputList stale = single_run_outputs();
     for (const Method* m : methods_of(MethodFamily::explicit_runge_kutta)) stale = stale + report_run_outputs(*m->tableau);
     if (!report_runs) {
-      prepare_outputs(opt.run.out_dir, single_run_outputs(), stale);
+      prepare_declared_outputs(opt.run.out_dir, single_run_outputs(), stale);
       return run_cloth(opt.scene, opt.run, tableau, source, opt.run.out_dir, cli.program());
     }
 
@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
       const SceneParams p = with_case(opt.scene, c);
       require_representable(p, opt.run);
     }
-    prepare_outputs(opt.run.out_dir, report_outputs, stale);
+    prepare_declared_outputs(opt.run.out_dir, report_outputs, stale);
     for (const ReportCase& c : report_cases) {
       const SceneParams p = with_case(opt.scene, c);
       // A divergence is a result here; an interruption ends the program (the interrupted run said so).

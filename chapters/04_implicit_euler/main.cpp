@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     if (!want_report_runs) {
       const NewtonSettings settings = newton_for(opt.scene.stiffness, opt.scene.damping);
       require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles));
-      prepare_outputs(opt.run.out_dir, run_output_specs(), ch04::report_outputs());
+      prepare_declared_outputs(opt.run.out_dir, run_output_specs(), ch04::report_outputs());
       return ch04::run_cloth(opt.scene, opt.run, settings, opt.run.out_dir, cli.program()).status;
     }
     // Every run of --report-runs is checked, with the values it uses, before the first one starts.
@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
       throw InputError("--linear-solver cg: --report-runs compares the symmetric and the definite Newton matrix, and "
                        "cg takes only the definite one: expected ldlt, ldu or lu");
     require_run_memory(opt.scene, opt.run, implicit_bytes_per_particle(particles), "--frames", 2);
-    prepare_outputs(opt.run.out_dir, ch04::report_outputs(), run_output_specs());
+    prepare_declared_outputs(opt.run.out_dir, ch04::report_outputs(), run_output_specs());
     return report_runs({opt, newton, opt.run.out_dir, cli.program(), reader_command(argc, argv)}, newton_for);
   });
 }

@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     if (settings.sweep_t_end_implicit > opt.run.t_end) throw InputError("--sweep-t-end-implicit: must not exceed --t-end");
     if (settings.sweep_t_end_implicit == 0) settings.sweep_t_end_implicit = opt.run.t_end;
     ch05::require_memory_of_runs(opt, settings);
-    prepare_outputs(opt.run.out_dir, ch05::outputs(settings.sweep), ch05::outputs(true));
+    prepare_declared_outputs(opt.run.out_dir, ch05::outputs(settings.sweep), ch05::outputs(true));
 
     const std::vector<ch05::Run> runs = ch05::run_all(opt, settings);
     // Every run has the same E(0): K and D do not enter the launch.

@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
   return cloth::run_program(cli.program(), [&] {
     const cloth::Options opt = cli.parse(argc, argv);
     check_scene(opt.scene, settings.threads);
-    cloth::prepare_outputs(opt.run.out_dir, outputs());
+    cloth::prepare_declared_outputs(opt.run.out_dir, outputs());
     const std::string& dir = opt.run.out_dir;
     const SweepSettings sweep = sweep_settings(full, settings, opt.run.t_end);
     try {

@@ -48,7 +48,7 @@ std::string output_listing(const OutputList& list) {
   return text;
 }
 
-void prepare_outputs(const std::string& dir, const OutputList& written, const OutputList& others) {
+void prepare_declared_outputs(const std::string& dir, const OutputList& written, const OutputList& others) {
   prepare_outputs(dir, output_names(written), output_names(others));
 }
 

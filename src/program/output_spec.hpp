@@ -51,6 +51,6 @@ std::string output_listing(const OutputList& list);
 
 /// prepare_outputs (program/output.hpp) for the declared files: `written` are this run's, `others` the files of the
 /// program's other modes an earlier run may have left.
-void prepare_outputs(const std::string& dir, const OutputList& written, const OutputList& others = {});
+void prepare_declared_outputs(const std::string& dir, const OutputList& written, const OutputList& others = {});
 
 }  // namespace cloth
