@@ -219,9 +219,21 @@ std::string CommandLine::usage() const {
 std::string CommandLine::markdown_reference() const {
   // A table cell holds no '|' (it would end the cell: the character entity stands for it) and shows flags and
   // values as code, each alternative of a value as code of its own.
+  // A flag named in the text ("--dt") is code too: as plain text its "--" would print as a dash.
   const auto cell = [](const std::string& text) {
     std::string out;
-    for (const char c : text) out += c == '|' ? std::string("&#124;") : std::string(1, c);
+    for (std::size_t k = 0; k < text.size(); ++k) {
+      const bool flag_starts = text.compare(k, 2, "--") == 0 && (k == 0 || text[k - 1] == ' ' || text[k - 1] == '(') &&
+                               k + 2 < text.size() && std::isalpha(static_cast<unsigned char>(text[k + 2])) != 0;
+      if (flag_starts) {
+        std::size_t end = k + 2;
+        while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) != 0 || text[end] == '-')) ++end;
+        out += "`" + text.substr(k, end - k) + "`";
+        k = end - 1;
+      } else {
+        out += text[k] == '|' ? std::string("&#124;") : std::string(1, text[k]);
+      }
+    }
     return out;
   };
   const auto code = [](const std::string& text) {
