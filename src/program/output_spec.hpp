@@ -1,5 +1,5 @@
 // Each program declares the files it writes once, here in the form of a list of OutputSpec: the name, what the
-// file holds, and who reads it. The same list prepares --out before a run (prepare_outputs), is printed by
+// file holds, and who reads it. The same list prepares --out before a run (prepare_declared_outputs), is printed by
 // `--list-outputs`, and is what the build checks a run and the book's pages against (cmake/CheckOutputs.cmake): a
 // file a run did not write, a file it wrote but did not declare, and a page including a file that is not a declared
 // fragment each fail the build and a test.
