@@ -1,19 +1,19 @@
 # The `docs` target: Doxygen builds the book (main page, one page per chapter, API reference of src/) into
 # build/docs/html/, with the figures of the `plots` target, the tables and sentences the chapter programs measured
 # (their fragments, src/program/fragment.hpp), and formulas rendered by Debian's MathJax, offline.
-# The `check_book` target then opens every page in headless Chromium (docs/check_book.sh).
+# The `check_book` target then opens every page in headless Chromium (tools/check_book/check_book.sh).
 
 # The browser check's own test: on a small folder of pages with one defect of each kind, it must find every one
-# and nothing else (docs/check_book_fixture/, docs/check_book_selftest.sh). It needs Chromium and MathJax, and no
-# compiled code, so the sanitizer build leaves it out.
+# and nothing else (tools/check_book/fixture/, tools/check_book/check_book_selftest.sh). It needs Chromium and
+# MathJax, and no compiled code, so the sanitizer build leaves it out.
 set(CLOTH_MATHJAX_DIR /usr/share/javascript/mathjax CACHE PATH "Debian's MathJax 2 (package libjs-mathjax)")
 find_program(CLOTH_CHROMIUM chromium)
 if(CLOTH_CHROMIUM AND NOT CLOTH_SANITIZE)
   add_test(NAME check_book_finds_each_defect
-           COMMAND bash ${PROJECT_SOURCE_DIR}/docs/check_book_selftest.sh ${CLOTH_MATHJAX_DIR})
+           COMMAND bash ${PROJECT_SOURCE_DIR}/tools/check_book/check_book_selftest.sh ${CLOTH_MATHJAX_DIR})
   set_tests_properties(check_book_finds_each_defect PROPERTIES LABELS docs TIMEOUT 300)
 elseif(NOT CLOTH_CHROMIUM)
-  message(STATUS "chromium not found: the browser check of the book (docs/check_book.sh) and its test are left out")
+  message(STATUS "chromium not found: the browser check of the book (tools/check_book/check_book.sh) and its test are left out")
 endif()
 find_package(Doxygen)
 if(NOT DOXYGEN_FOUND)
@@ -47,10 +47,11 @@ if(CLOTH_WEB_MODULE)
   add_dependencies(docs web)
 endif()
 
-# The browser check of the book (docs/check_book.sh): every page opened in headless Chromium, failing on a formula
-# error, a missing image, a broken link or a figure or table wider than the page. It builds the book first.
+# The browser check of the book (tools/check_book/check_book.sh): every page opened in headless Chromium, failing
+# on a formula error, a missing image, a broken link or a figure or table wider than the page. It builds the book
+# first.
 add_custom_target(check_book
-  COMMAND bash ${PROJECT_SOURCE_DIR}/docs/check_book.sh ${CLOTH_DOCS_DIR}/html
+  COMMAND bash ${PROJECT_SOURCE_DIR}/tools/check_book/check_book.sh ${CLOTH_DOCS_DIR}/html
   WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
   COMMENT "check_book: every page of the book in headless Chromium"
   VERBATIM)

@@ -1,7 +1,7 @@
 # The book's live demos: the core compiled to WebAssembly (web/, a project of its own configured with Emscripten's
 # emcmake in build/web) when Emscripten is installed (Debian package emscripten, installed by .ci/setup). The `docs`
 # target then builds it and copies build/web/cloth_web.js beside the pages; without it the pages say, where a demo
-# would be, that this copy of the book was built without them. The demos' check (docs/check_demos.sh) opens each
+# would be, that this copy of the book was built without them. The demos' check (tools/check_demos.sh) opens each
 # demo in headless Chromium and compares its final state with ch10_cloth's final.dat.
 option(CLOTH_WEB "Build the book's live demos (web/) with Emscripten when it is installed" ON)
 find_program(CLOTH_EMCMAKE emcmake)

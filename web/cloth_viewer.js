@@ -9,7 +9,7 @@
 // is another name for `method`; `play` starts the animation at once. With `autorun` the demo runs to the end at once and writes the final state in
 // final.dat's format into the element with id `final-state`, the line a stopped run prints (or "ok") into
 // `run-status` and the run's command line (ch10_cloth's flags) into `run-arguments`, so that a script can run
-// the native program on the same flags and compare (docs/check_demos.sh); `measure` first times the whole run as
+// the native program on the same flags and compare (tools/check_demos.sh); `measure` first times the whole run as
 // the native program does (run.txt's wall_seconds / steps) and writes the seconds per step into `step-cost`.
 "use strict";
 

@@ -96,16 +96,17 @@ double measure_single_spring(const SceneParams& params, const RunSettings& run, 
 // subfolder.
 std::string report_folder(const std::string& method, const ReportCase& c) { return method + "_" + c.name(); }
 
-// What each mode writes into --out, so that the folder is checked before anything runs and the files of another
-// mode, left by an earlier run, are removed.
-std::vector<std::string> outputs_of(bool single_spring, bool report_runs) {
-  if (single_spring) return {"single_spring.dat"};
-  if (!report_runs) return run_output_names();
-  std::vector<std::string> names = {"single_spring.dat", "report_runs.md"};
+// The files each mode writes into --out, declared once (program/output_spec.hpp): so that the folder is checked
+// before anything runs and the files of another mode, left by an earlier run, are removed.
+OutputList outputs_of(bool single_spring, bool report_runs) {
+  const OutputSpec spring = {"single_spring.dat", OutputKind::figure_input,
+                             "explicit Euler's energy on one undamped spring against (1 + (h omega)^2)^n"};
+  if (single_spring) return {spring};
+  if (!report_runs) return run_output_specs();
+  OutputList files = {spring, {"report_runs.md", OutputKind::fragment, "how each method's run of each (K, D) ended"}};
   for (const std::string& m : chapter_methods)
-    for (const ReportCase& c : report_cases)
-      for (const std::string& file : run_output_names()) names.push_back(report_folder(m, c) + "/" + file);
-  return names;
+    for (const ReportCase& c : report_cases) files = files + run_output_specs(report_folder(m, c), {"energy.dat"});
+  return files;
 }
 
 // How a run of the report scene ended, as a cell of the page's table: "finishes; E(2 s) = 2.41e+07 J, 304 times
@@ -169,6 +170,7 @@ int main(int argc, char** argv) {
                  "the report's (K, D) = (50,0), (200,0), (200,20) with both methods and the single spring at K = 200, "
                  "one subfolder of --out each (the chapter's figures; exit 0 even when a run diverges)",
                  [&] { report_runs = true; });
+  cli.declare_outputs([&](const Options&) { return outputs_of(single_spring, report_runs); });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     if (single_spring && report_runs) throw InputError("--single-spring and --report-runs: choose one");
@@ -177,9 +179,8 @@ int main(int argc, char** argv) {
     // Every run of --report-runs is checked with the values it uses, before the first one starts.
     if (report_runs)
       for (const ReportCase& c : report_cases) require_representable(with_case(opt.scene, c), opt.run);
-    std::vector<std::string> every_output = outputs_of(false, false);  // what any mode writes
-    for (const std::string& name : outputs_of(false, true)) every_output.push_back(name);
-    prepare_outputs(opt.run.out_dir, outputs_of(single_spring, report_runs), every_output);
+    prepare_declared_outputs(opt.run.out_dir, outputs_of(single_spring, report_runs),
+                    outputs_of(false, false) + outputs_of(false, true));  // what any mode writes
     if (single_spring) {
       measure_single_spring(single_spring_params(opt.scene.stiffness, 0), opt.run, opt.run.out_dir);
       return 0;

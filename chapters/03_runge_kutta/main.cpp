@@ -63,19 +63,23 @@ std::string report_folder(const ButcherTableau& tableau, const ReportCase& c) {
   return safe_file_name(tableau.name, 48, "tableau") + "_" + c.name();
 }
 
-std::vector<std::string> single_run_outputs() {
-  std::vector<std::string> names = run_output_names();
-  names.emplace_back("lowest_point.dat");
-  return names;
+// The files of one run of the cloth: the model page's four and the lowest particle's height (when `drawn`, for the
+// chapter's figures).
+OutputList single_run_outputs(const std::string& folder = "", bool drawn = false) {
+  const OutputKind kind = drawn ? OutputKind::figure_input : OutputKind::data;
+  OutputList files = drawn ? run_output_specs(folder, {"energy.dat"}) : run_output_specs(folder);
+  files.push_back({(folder.empty() ? "" : folder + "/") + "lowest_point.dat", kind,
+                   "the lowest particle's height at every frame"});
+  return files;
 }
 
 // What --report-runs writes with `tableau`: order.dat, the page's table of methods (methods.md) and a folder of run
-// outputs per report case.
-std::vector<std::string> report_run_outputs(const ButcherTableau& tableau) {
-  std::vector<std::string> names = {"order.dat", "methods.md"};
-  for (const ReportCase& c : report_cases)
-    for (const std::string& name : single_run_outputs()) names.push_back(report_folder(tableau, c) + "/" + name);
-  return names;
+// outputs per report case; declared once (program/output_spec.hpp).
+OutputList report_run_outputs(const ButcherTableau& tableau) {
+  OutputList files = {{"order.dat", OutputKind::figure_input, "every tableau's error against h on the damped spring"},
+                      {"methods.md", OutputKind::fragment, "the registry's explicit Runge-Kutta rows"}};
+  for (const ReportCase& c : report_cases) files = files + single_run_outputs(report_folder(tableau, c), true);
+  return files;
 }
 
 // The registry's explicit Runge-Kutta methods: "explicit_euler, heun, ...".
@@ -137,24 +141,26 @@ int main(int argc, char** argv) {
                  "the chosen tableau on the report's (K, D) = (50,0), (200,0), (200,20), one subfolder of --out each, "
                  "order.dat and methods.md (the chapter's figures and table; exit 0 even when a run diverges)",
                  [&] { report_runs = true; });
-  return run_program(cli.program(), [&] {
-    Options opt = cli.parse(argc, argv);
-    ButcherTableau tableau;
+  const auto chosen_tableau = [&] {
     try {
-      tableau = tableau_from_argument(tableau_argument);
+      return tableau_from_argument(tableau_argument);
     } catch (const InputError& e) {
       throw InputError(std::string("--tableau: ") + e.what());
     }
+  };
+  cli.declare_outputs([&](const Options&) { return report_runs ? report_run_outputs(chosen_tableau()) : single_run_outputs(); });
+  return run_program(cli.program(), [&] {
+    Options opt = cli.parse(argc, argv);
+    const ButcherTableau tableau = chosen_tableau();
     const bool builtin = tableau.name == tableau_argument;
     const std::string source = builtin ? "builtin" : escaped(tableau_argument);
-    const std::vector<std::string> report_outputs = report_run_outputs(tableau);
+    const OutputList report_outputs = report_run_outputs(tableau);
     // What an earlier run of another mode or another built-in tableau left: removed, so that --out never mixes
     // two runs. A tableau file's folders are named after the file's `name`, which this run cannot know: they stay.
-    std::vector<std::string> stale = single_run_outputs();
-    for (const Method* m : methods_of(MethodFamily::explicit_runge_kutta))
-      for (const std::string& name : report_run_outputs(*m->tableau)) stale.push_back(name);
+    OutputList stale = single_run_outputs();
+    for (const Method* m : methods_of(MethodFamily::explicit_runge_kutta)) stale = stale + report_run_outputs(*m->tableau);
     if (!report_runs) {
-      prepare_outputs(opt.run.out_dir, single_run_outputs(), stale);
+      prepare_declared_outputs(opt.run.out_dir, single_run_outputs(), stale);
       return run_cloth(opt.scene, opt.run, tableau, source, opt.run.out_dir, cli.program());
     }
 
@@ -166,7 +172,7 @@ int main(int argc, char** argv) {
       const SceneParams p = with_case(opt.scene, c);
       require_representable(p, opt.run);
     }
-    prepare_outputs(opt.run.out_dir, report_outputs, stale);
+    prepare_declared_outputs(opt.run.out_dir, report_outputs, stale);
     for (const ReportCase& c : report_cases) {
       const SceneParams p = with_case(opt.scene, c);
       // A divergence is a result here; an interruption ends the program (the interrupted run said so).

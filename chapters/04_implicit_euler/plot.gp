@@ -19,6 +19,7 @@ plot data.'/full_K50_D0/energy.dat'   using 1:5 with lines lw 2 lc rgb "#1f77b4"
      79200 with lines dt 2 lc rgb "black" title "E(0) = 79200 J"
 
 # The lowest residual reached, and the time of the definite matrix's failed step, as the run measured them.
+set datafile missing "?"  # residuals.dat's ratio at k = 0, which is undefined
 stats data.'/residuals.dat' using 2 nooutput
 floor = STATS_min
 stats data.'/iterations_definite.dat' using 1 nooutput

@@ -73,6 +73,39 @@ void flat_step_history(const SceneParams& base, const std::string& dir, const st
   write_table_fragment(dir + "/flat_step.md", table, command);
 }
 
+namespace {
+
+// How the frozen dampers' difference shrinks with h, on the report scene's damped case (K = 200, D = 20) where
+// damping is strong enough to see it: to T = 0.3 s at h = 0.01, 0.005, 0.0025; rows added to `frozen`.
+void frozen_dampers_with_h(const SceneParams& base, const RunSettings& base_run, MarkdownTable& frozen) {
+  const Scene damped(with_K_and_D(base, 200, 20));
+  double previous = 0;
+  for (const double h : {0.01, 0.005, 0.0025}) {
+    RunSettings run = base_run;
+    run.dt = h;
+    run.t_end = 0.3;
+    RunResult r[2];
+    for (int k = 0; k < 2; ++k) {
+      ForceField field(damped);
+      NewtonSettings s;
+      s.line_search = k ? LineSearch::residual : LineSearch::potential;
+      const auto made = make_newton_stepper("implicit_euler", field, {s});
+      r[k] = simulate(*made, run, false);
+      throw_if_interrupted();
+      if (r[k].status != RunStatus::ok) throw std::runtime_error("implicit_euler " + r[k].message);
+    }
+    ForceField field(damped);
+    const double d = (r[0].x - r[1].x).lpNorm<Eigen::Infinity>();
+    frozen.add_row({"report scene K = 200, D = 20, T = 0.3 s, h = " + format_number(h) +
+                        (previous > 0 ? " (ratio " + format_number(previous / d, 3) + ")" : ""),
+                    format_number(d, 3), format_number(field.energy(r[0].x, r[0].v).total(), 6),
+                    format_number(field.energy(r[1].x, r[1].v).total(), 6)});
+    previous = d;
+  }
+}
+
+}  // namespace
+
 // Implicit Euler on the curtain at three frame-rate steps: full Newton minimising Phi, full Newton with the
 // residual search, and one iteration; each run's outcome, Newton iterations per step and seconds. Returns the
 // largest position difference at T between the two full-Newton forms where both finish (the frozen dampers'
@@ -130,32 +163,7 @@ void curtain_runs(const SceneParams& base, const RunSettings& base_run, const st
     }
   }
   write_table_fragment(dir + "/curtain_runs.md", table, command);
-  // How the frozen dampers' difference shrinks with h, on the report scene's damped case (K = 200, D = 20)
-  // where damping is strong enough to see it: to T = 0.3 s at h = 0.01, 0.005, 0.0025.
-  const Scene damped(with_K_and_D(base, 200, 20));
-  double previous = 0;
-  for (const double h : {0.01, 0.005, 0.0025}) {
-    RunSettings run = base_run;
-    run.dt = h;
-    run.t_end = 0.3;
-    RunResult r[2];
-    for (int k = 0; k < 2; ++k) {
-      ForceField field(damped);
-      NewtonSettings s;
-      s.line_search = k ? LineSearch::residual : LineSearch::potential;
-      const auto made = make_newton_stepper("implicit_euler", field, {s});
-      r[k] = simulate(*made, run, false);
-      throw_if_interrupted();
-      if (r[k].status != RunStatus::ok) throw std::runtime_error("implicit_euler " + r[k].message);
-    }
-    ForceField field(damped);
-    const double d = (r[0].x - r[1].x).lpNorm<Eigen::Infinity>();
-    frozen.add_row({"report scene K = 200, D = 20, T = 0.3 s, h = " + format_number(h) +
-                        (previous > 0 ? " (ratio " + format_number(previous / d, 3) + ")" : ""),
-                    format_number(d, 3), format_number(field.energy(r[0].x, r[0].v).total(), 6),
-                    format_number(field.energy(r[1].x, r[1].v).total(), 6)});
-    previous = d;
-  }
+  frozen_dampers_with_h(base, base_run, frozen);
   write_table_fragment(dir + "/frozen_dampers.md", frozen, command);
 }
 

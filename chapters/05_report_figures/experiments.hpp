@@ -54,8 +54,8 @@ struct Settings {
 };
 
 /// The files the program writes into `--out` (figure data, tables, and each figure run's folder runs/NAME/), with
-/// or without the sweep, for prepare_outputs.
-std::vector<std::string> output_names(bool sweep);
+/// or without the sweep, declared once (program/output_spec.hpp).
+cloth::OutputList outputs(bool sweep);
 
 /// Refuses, before anything runs, a set of runs whose results would not fit in memory: every run's result is held
 /// until the figures are written, the figures' runs with the cloth at every step, the sweep's with an energy

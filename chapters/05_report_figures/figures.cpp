@@ -30,6 +30,119 @@ std::string title_of(const std::string& method) { return find_method(method).tit
 // A string column of a gnuplot data file: quoted, so that it may hold spaces.
 std::string quoted(const std::string& text) { return '"' + text + '"'; }
 
+// Energy and sag against time, one line per step.
+void write_series(const std::string& path, const Run& run, const Scene& scene, const EnergyReference& reference) {
+  const RunResult& res = run.result;
+  OutputFile series(path);
+  std::fprintf(series.get(), "# %s K=%g D=%g: t[s] E_total[J] E/E_ref lowest_z[m]  (E_ref = %s)\n",
+               run.method.c_str(), run.K, run.D, reference.description().c_str());
+  for (std::size_t k = 0; k < res.energy.size() && k < res.frames.size(); ++k)
+    std::fprintf(series.get(), "%.6g %.10g %.10g %.8g\n", res.energy[k].t, res.energy[k].energy.total(),
+                 res.energy[k].energy.total() / reference.joules, lowest_z(scene, res.frames[k].positions));
+  series.commit();
+}
+
+// How many meshes a run's mesh file holds, and the box around all of them (the animation's fixed box).
+struct MeshBox {
+  int blocks = 0;
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+};
+
+// The strain-coloured structural mesh every `stride` frames (T / movie_frames), then the last sane state `last`
+// if the run stopped.
+MeshBox write_mesh(const std::string& path, const RunResult& res, const Scene& scene, const Vector& last,
+                   std::size_t stride) {
+  OutputFile mesh(path);
+  MeshBox box;
+  const auto draw = [&](const Vector& positions, double t) {
+    write_strain_block(mesh.get(), scene, positions, t, SpringFamily::structural);
+    for (Eigen::Index k = 0; k < positions.size(); k += 3) {
+      box.lo = box.lo.cwiseMin(positions.segment<3>(k));
+      box.hi = box.hi.cwiseMax(positions.segment<3>(k));
+    }
+    ++box.blocks;
+  };
+  for (std::size_t k = 0; k < res.frames.size(); k += stride) draw(res.frames[k].positions, res.frames[k].t);
+  if (diverged(res)) draw(last, res.t);
+  mesh.commit();
+  return box;
+}
+
+// runs.dat's row of run number `number`: its name, title, how it ended, its mesh count, and its box.
+void write_run_row(std::FILE* table, std::size_t number, const Run& run, const std::string& ending, const MeshBox& box) {
+  std::fprintf(table, "%zu %s %s %s %d %s", number, run_name(run).c_str(), quoted(find_method(run.method).title).c_str(),
+               quoted(ending).c_str(), box.blocks, format_number(run.result.t, 4).c_str());
+  for (int a = 0; a < 3; ++a)
+    std::fprintf(table, " %s %s", format_number(box.lo[a], 4).c_str(), format_number(box.hi[a], 4).c_str());
+  std::fprintf(table, "\n");
+}
+
+// instants.dat's rows of run number `number`: the mesh block of each sheet's instant, or the last one for a run
+// that stopped before it.
+void write_instants(std::FILE* instants, std::size_t number, const RunResult& res, int blocks, std::size_t stride,
+                    double h, double T) {
+  for (std::size_t i = 0; i < sheet_fractions.size(); ++i) {
+    const double frac = sheet_fractions[i];
+    const int wanted = static_cast<int>(std::lround(frac * movie_frames));
+    const bool have = static_cast<std::size_t>(wanted) * stride < res.frames.size();
+    const std::string at = "t = " + format_number(frac * T) + " s";
+    std::fprintf(instants, "%zu %zu %d %s\n", number, i + 1, have ? wanted : blocks - 1,
+                 quoted(have ? at : at + ": " + ended(res, h) + ", last frame t = " + format_number(res.t, 3) + " s")
+                     .c_str());
+  }
+}
+
+// Per case: a log energy axis when some method's energy grew tenfold, and a sag range that shows the bounded
+// runs (exploding ones leave it, which the plot says).
+void write_cases(const std::string& path, const std::vector<Run>& runs, const SceneParams& scene_params,
+                 const EnergyReference& reference) {
+  const std::size_t cases = report_cases.size();
+  OutputFile case_table(path);
+  std::fprintf(case_table.get(), "# case K D log_energy_axis sag_low[m]\n");
+  const Scene base_scene(scene_params);  // K and D aside, every run's scene: which particles are pinned
+  for (std::size_t c = 0; c < cases; ++c) {
+    double worst_gain = 0, low = 0;
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      const RunResult& res = runs[m * cases + c].result;
+      const double gain = energy_measures(res.energy, reference).gain;
+      worst_gain = std::max(worst_gain, gain);
+      if (!diverged(res) && gain < 1.0)
+        for (const Frame& f : res.frames) low = std::min(low, lowest_z(base_scene, f.positions));
+    }
+    std::fprintf(case_table.get(), "%zu %s %s %d %s\n", c + 1, format_number(report_cases[c].K).c_str(),
+                 format_number(report_cases[c].D).c_str(), worst_gain > 9.0 ? 1 : 0, format_number(1.15 * low, 3).c_str());
+  }
+  case_table.commit();
+}
+
+// The report's Figures 2-7: which run each shows, and its caption.
+void write_figures(const std::string& path) {
+  const std::size_t cases = report_cases.size();
+  OutputFile figures(path);
+  std::fprintf(figures.get(), "# figure run caption  (the report's Figures 2-7)\n");
+  for (const ReportFigure& rf : report_figures) {
+    const auto m = static_cast<std::size_t>(std::find(methods.begin(), methods.end(), rf.method) - methods.begin());
+    const ReportCase& c = report_cases[static_cast<std::size_t>(rf.report_case)];
+    std::fprintf(figures.get(), "%d %zu %s\n", rf.number, m * cases + static_cast<std::size_t>(rf.report_case) + 1,
+                 quoted("Figure " + std::to_string(rf.number) + ": " + rf.caption_method + " with K=" +
+                        format_number(c.K) + " and D=" + format_number(c.D))
+                     .c_str());
+  }
+  figures.commit();
+}
+
+// What plot.gp's loops need: the step, the horizons, and the numbers of methods, cases and instants.
+void write_parameters(const std::string& path, const RunSettings& run, const Settings& settings,
+                      const EnergyReference& reference) {
+  OutputFile parameters(path);
+  std::fprintf(parameters.get(),
+               "# h[s] t_end[s] sweep_t_end_implicit[s] methods cases instants E_ref[J] E_ref_is_E0 (1: E_ref = E(0), "
+               "the launch's kinetic energy; 0: W L, the cloth starts at rest)\n%g %g %g %zu %zu %zu %.6g %d\n",
+               run.dt, run.t_end, settings.sweep_t_end_implicit, methods.size(), report_cases.size(),
+               sheet_fractions.size(), reference.joules, reference.launch ? 1 : 0);
+  parameters.commit();
+}
+
 }  // namespace
 
 void write_figure_data(const std::vector<Run>& runs, const Options& opt, const Settings& settings,
@@ -90,48 +203,12 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
                         bounded ? outcome(res) : ended(res, h), bounded ? format_number(e.gain, 3) : "", rise,
                         bounded ? format_number(e.final_change, 3) : "", bounded ? format_number(min_z, 3) : ""});
 
-    // Energy and sag against time, one line per step.
-    OutputFile series(dir + "series_" + name + ".dat");
-    std::fprintf(series.get(), "# %s K=%g D=%g: t[s] E_total[J] E/E_ref lowest_z[m]  (E_ref = %s)\n",
-                 run.method.c_str(), run.K, run.D, reference.description().c_str());
-    for (std::size_t k = 0; k < res.energy.size() && k < res.frames.size(); ++k)
-      std::fprintf(series.get(), "%.6g %.10g %.10g %.8g\n", res.energy[k].t, res.energy[k].energy.total(),
-                   res.energy[k].energy.total() / reference.joules, lowest_z(scene, res.frames[k].positions));
-    series.commit();
-
-    // The strain-coloured structural mesh every T / movie_frames, then the last sane state if the run stopped.
-    OutputFile mesh(dir + "mesh_" + name + ".dat");
-    int blocks = 0;
-    Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = lo;  // the animation's fixed box
-    const auto draw = [&](const Vector& positions, double t) {
-      write_strain_block(mesh.get(), scene, positions, t, SpringFamily::structural);
-      for (Eigen::Index k = 0; k < positions.size(); k += 3) {
-        lo = lo.cwiseMin(positions.segment<3>(k));
-        hi = hi.cwiseMax(positions.segment<3>(k));
-      }
-      ++blocks;
-    };
-    for (std::size_t k = 0; k < res.frames.size(); k += stride) draw(res.frames[k].positions, res.frames[k].t);
-    if (diverged(res)) draw(last, res.t);
-    mesh.commit();
-
-    const std::string title = find_method(run.method).title;
+    write_series(dir + "series_" + name + ".dat", run, scene, reference);
+    const MeshBox box = write_mesh(dir + "mesh_" + name + ".dat", res, scene, last, stride);
     const std::string ending =
         diverged(res) ? ended(res, h) : "bounded, max E/" + ratio + " = " + format_number(e.peak, 3);
-    std::fprintf(table.get(), "%zu %s %s %s %d %s", r + 1, name.c_str(), quoted(title).c_str(), quoted(ending).c_str(),
-                 blocks, format_number(res.t, 4).c_str());
-    for (int a = 0; a < 3; ++a)
-      std::fprintf(table.get(), " %s %s", format_number(lo[a], 4).c_str(), format_number(hi[a], 4).c_str());
-    std::fprintf(table.get(), "\n");
-    for (std::size_t i = 0; i < sheet_fractions.size(); ++i) {
-      const double frac = sheet_fractions[i];
-      const int wanted = static_cast<int>(std::lround(frac * movie_frames));
-      const bool have = static_cast<std::size_t>(wanted) * stride < res.frames.size();
-      const std::string at = "t = " + format_number(frac * T) + " s";
-      std::fprintf(instants.get(), "%zu %zu %d %s\n", r + 1, i + 1, have ? wanted : blocks - 1,
-                   quoted(have ? at : at + ": " + ended(res, h) + ", last frame t = " + format_number(res.t, 3) + " s")
-                       .c_str());
-    }
+    write_run_row(table.get(), r + 1, run, ending, box);
+    write_instants(instants.get(), r + 1, res, box.blocks, stride, h, T);
   }
   summary.commit();
   table.commit();
@@ -139,44 +216,9 @@ void write_figure_data(const std::vector<Run>& runs, const Options& opt, const S
                                              page_table.markdown() + "\n" + measured_by_line(settings.command));
   instants.commit();
 
-  // Per case: a log energy axis when some method's energy grew tenfold, and a sag range that shows the bounded
-  // runs (exploding ones leave it, which the plot says).
-  OutputFile case_table(dir + "cases.dat");
-  std::fprintf(case_table.get(), "# case K D log_energy_axis sag_low[m]\n");
-  const Scene base_scene(opt.scene);  // K and D aside, every run's scene: which particles are pinned
-  for (std::size_t c = 0; c < cases; ++c) {
-    double worst_gain = 0, low = 0;
-    for (std::size_t m = 0; m < methods.size(); ++m) {
-      const RunResult& res = runs[m * cases + c].result;
-      const double gain = energy_measures(res.energy, reference).gain;
-      worst_gain = std::max(worst_gain, gain);
-      if (!diverged(res) && gain < 1.0)
-        for (const Frame& f : res.frames) low = std::min(low, lowest_z(base_scene, f.positions));
-    }
-    std::fprintf(case_table.get(), "%zu %s %s %d %s\n", c + 1, format_number(report_cases[c].K).c_str(),
-                 format_number(report_cases[c].D).c_str(), worst_gain > 9.0 ? 1 : 0, format_number(1.15 * low, 3).c_str());
-  }
-  case_table.commit();
-
-  OutputFile figures(dir + "figures.dat");
-  std::fprintf(figures.get(), "# figure run caption  (the report's Figures 2-7)\n");
-  for (const ReportFigure& rf : report_figures) {
-    const auto m = static_cast<std::size_t>(std::find(methods.begin(), methods.end(), rf.method) - methods.begin());
-    const ReportCase& c = report_cases[static_cast<std::size_t>(rf.report_case)];
-    std::fprintf(figures.get(), "%d %zu %s\n", rf.number, m * cases + static_cast<std::size_t>(rf.report_case) + 1,
-                 quoted("Figure " + std::to_string(rf.number) + ": " + rf.caption_method + " with K=" +
-                        format_number(c.K) + " and D=" + format_number(c.D))
-                     .c_str());
-  }
-  figures.commit();
-
-  OutputFile parameters(dir + "parameters.dat");
-  std::fprintf(parameters.get(),
-               "# h[s] t_end[s] sweep_t_end_implicit[s] methods cases instants E_ref[J] E_ref_is_E0 (1: E_ref = E(0), "
-               "the launch's kinetic energy; 0: W L, the cloth starts at rest)\n%g %g %g %zu %zu %zu %.6g %d\n",
-               h, T, settings.sweep_t_end_implicit, methods.size(), cases, sheet_fractions.size(), reference.joules,
-               reference.launch ? 1 : 0);
-  parameters.commit();
+  write_cases(dir + "cases.dat", runs, opt.scene, reference);
+  write_figures(dir + "figures.dat");
+  write_parameters(dir + "parameters.dat", opt.run, settings, reference);
 }
 
 }  // namespace ch05

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
                   if (settings.sweep_t_end_implicit <= 0) throw InputError("expected a positive time, got '" + s + "'");
                 });
   cli.add_switch("--no-sweep", "skip the K x D sweep", [&] { settings.sweep = false; });
+  cli.declare_outputs([&](const Options&) { return ch05::outputs(settings.sweep); });
 
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
@@ -38,7 +39,7 @@ int main(int argc, char** argv) {
     if (settings.sweep_t_end_implicit > opt.run.t_end) throw InputError("--sweep-t-end-implicit: must not exceed --t-end");
     if (settings.sweep_t_end_implicit == 0) settings.sweep_t_end_implicit = opt.run.t_end;
     ch05::require_memory_of_runs(opt, settings);
-    prepare_outputs(opt.run.out_dir, ch05::output_names(settings.sweep), ch05::output_names(true));
+    prepare_declared_outputs(opt.run.out_dir, ch05::outputs(settings.sweep), ch05::outputs(true));
 
     const std::vector<ch05::Run> runs = ch05::run_all(opt, settings);
     // Every run has the same E(0): K and D do not enter the launch.

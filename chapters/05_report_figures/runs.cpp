@@ -18,19 +18,32 @@ namespace ch05 {
 
 using namespace cloth;
 
-std::vector<std::string> output_names(bool sweep) {
-  std::vector<std::string> names = {"summary.dat", "summary.md",  "runs.dat",   "instants.dat",
-                                    "cases.dat",   "parameters.dat", "figures.dat", "theory.txt",
-                                    "theory.md",   "deformed_damping.md", "growth.md"};
-  if (sweep) names.insert(names.end(), {"sweep.dat", "sweep.md", "sweep_implicit.md"});
+OutputList outputs(bool sweep) {
+  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment, data = OutputKind::data;
+  OutputList files = {
+      {"parameters.dat", figure, "h, T and the numbers of methods and cases, for the figures' loops"},
+      {"runs.dat", figure, "each figure run's name, method, status and the extent of its meshes"},
+      {"instants.dat", figure, "the instants of the strain-coloured sheets"},
+      {"cases.dat", figure, "each case's K, D and axes"},
+      {"figures.dat", figure, "the report's figures: which run each shows"},
+      {"summary.dat", data, "each figure run's energy gain, sag and outcome"},
+      {"summary.md", fragment, "the same, as the page's table"},
+      {"theory.txt", data, "the stiffness and damping eigenvalues the page quotes"},
+      {"theory.md", fragment, "those eigenvalues, as the page's table"},
+      {"deformed_damping.md", fragment, "the damping rate on the deformed cloth"},
+      {"growth.md", fragment, "when and by how much RK4's energy rises"}};
+  if (sweep)
+    files = files + OutputList{{"sweep.dat", figure, "energy gain and outcome over K x D, per method"},
+                               {"sweep.md", fragment, "the sweep's summary"},
+                               {"sweep_implicit.md", fragment, "implicit Euler's sweep to its shorter T"}};
   for (const std::string& m : methods)
     for (const ReportCase& c : report_cases) {
       const std::string name = run_name({m, c.K, c.D, 0, true, {}});
-      names.push_back("series_" + name + ".dat");
-      names.push_back("mesh_" + name + ".dat");
-      for (const std::string& file : run_output_names()) names.push_back("runs/" + name + "/" + file);
+      files.push_back({"series_" + name + ".dat", figure, "energy and sag against time"});
+      files.push_back({"mesh_" + name + ".dat", figure, "strain-coloured sheets at the instants"});
+      files = files + run_output_specs("runs/" + name);
     }
-  return names;
+  return files;
 }
 
 void require_memory_of_runs(const Options& opt, const Settings& settings) {

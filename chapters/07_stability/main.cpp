@@ -12,10 +12,9 @@
 #include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
+#include "program/timing.hpp"
 
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -24,15 +23,27 @@ using namespace ch07;
 
 namespace {
 
-// The files the program writes into --out.
-std::vector<std::string> output_names() {
-  std::vector<std::string> names = {"regions.dat", "predicted_rest.dat", "predicted.dat", "measured.dat",
-                                    "implicit_euler.txt", "summary.txt", "spectra.txt", "grid_summary.md",
-                                    "damped_reach.md", "hmax_table.md"};
+// The files the program writes into --out, declared once (program/output_spec.hpp).
+cloth::OutputList outputs() {
+  using cloth::OutputKind;
+  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment, data = OutputKind::data;
+  cloth::OutputList files = {
+      {"regions.dat", figure, "|R(z)| over the complex plane, every tableau"},
+      {"predicted_rest.dat", figure, "h_max predicted from the rest spectrum against K"},
+      {"predicted.dat", figure, "h_max predicted at rest and at the sagged equilibrium, per K and D"},
+      {"measured.dat", figure, "h_max measured by bisection, with its bracket"},
+      {"summary.txt", data, "the headline numbers, key = value"},
+      {"implicit_euler.txt", fragment, "implicit Euler's probe runs at h = 0.1 s"},
+      {"spectra.txt", fragment, "the transcript of the spectra's largest eigenvalues"},
+      {"grid_summary.md", fragment, "the grid's fastest modes and reach, for the larger grid's section"},
+      {"damped_reach.md", fragment, "how far the damped modes reach along the real axis"},
+      {"hmax_table.md", fragment, "predicted against measured h_max"}};
   for (const cloth::ReportCase& c : cloth::report_cases)
-    for (const char* state : {"rest", "sagged"}) names.push_back(std::string("spectrum_") + state + "_" + c.name() + ".dat");
-  names.push_back("run_time.md");  // written last: the whole run's time
-  return names;
+    for (const char* state : {"rest", "sagged"})
+      files.push_back({std::string("spectrum_") + state + "_" + c.name() + ".dat", figure,
+                       std::string("h lambda of the ") + state + " cloth, h = --dt"});
+  files.push_back({"run_time.md", fragment, "how long the whole run took (written last)"});
+  return files;
 }
 
 // What the sweep needs before anything runs: a cloth that hangs (its sagged equilibrium is what the predictions
@@ -63,11 +74,11 @@ SweepSettings sweep_settings(bool full, SweepSettings sweep, double T) {
 }
 
 // run_time.md: how long the run took, from the start of main(), in wall-clock time and in processor time summed
-// over its threads, with the command that measured it.
-void write_run_time(const std::string& dir, const std::string& command, std::chrono::steady_clock::time_point started,
-                    std::clock_t cpu_started, int threads) {
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  const double cpu = static_cast<double>(std::clock() - cpu_started) / CLOCKS_PER_SEC;
+// over its threads (program/timing.hpp), with the command that measured it.
+void write_run_time(const std::string& dir, const std::string& command, double wall_started, double cpu_started,
+                    int threads) {
+  const double wall = cloth::wall_seconds() - wall_started;
+  const double cpu = cloth::process_cpu_seconds() - cpu_started;
   cloth::write_text_fragment(dir + "/run_time.md",
                              "`" + command + "` took " + cloth::format_fixed(wall, 1) + " s of wall-clock time and " +
                                  cloth::format_fixed(cpu, 1) + " s of processor time on " + std::to_string(threads) +
@@ -77,8 +88,7 @@ void write_run_time(const std::string& dir, const std::string& command, std::chr
 }  // namespace
 
 int main(int argc, char** argv) {
-  const auto started = std::chrono::steady_clock::now();
-  const std::clock_t cpu_started = std::clock();
+  const double wall_started = cloth::wall_seconds(), cpu_started = cloth::process_cpu_seconds();
   cloth::CommandLine cli("ch07_stability",
                          "Chapter 7: stability regions from the Butcher tableaus, the cloth's spectrum over them, "
                          "predicted\nand measured largest stable steps h_max over K in [10, 1e5] and D in {0, 20}.");
@@ -102,10 +112,11 @@ int main(int argc, char** argv) {
     settings.run_budget = cloth::parse_number(s);
     if (settings.run_budget < 0) throw cloth::InputError("expected a number >= 0");
   });
+  cli.declare_outputs([](const cloth::Options&) { return outputs(); });
   return cloth::run_program(cli.program(), [&] {
     const cloth::Options opt = cli.parse(argc, argv);
     check_scene(opt.scene, settings.threads);
-    cloth::prepare_outputs(opt.run.out_dir, output_names());
+    cloth::prepare_declared_outputs(opt.run.out_dir, outputs());
     const std::string& dir = opt.run.out_dir;
     const SweepSettings sweep = sweep_settings(full, settings, opt.run.t_end);
     try {
@@ -118,7 +129,7 @@ int main(int argc, char** argv) {
       const std::string command = cloth::reader_command(argc, argv);
       for (const auto& entry : hmax_sweep(dir, opt.scene, rest, equilibria, sweep, command)) summary.push_back(entry);
       cloth::write_key_values(dir + "/summary.txt", summary);
-      write_run_time(dir, command, started, cpu_started, sweep.threads);
+      write_run_time(dir, command, wall_started, cpu_started, sweep.threads);
     } catch (const NoEquilibrium& e) {
       std::fprintf(stderr, "%s: %s\n", cli.program().c_str(), e.what());
       return 3;

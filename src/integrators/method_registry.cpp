@@ -306,12 +306,12 @@ const std::vector<Method>& methods() {
       // prediction. Converged, it is implicit Euler's step up to the term its update drops (integrators/xpbd.cpp);
       // with few iterations the springs stretch more than K allows. First order, like implicit Euler.
       {"xpbd", "XPBD", "implicit Euler's step by projections of compliant spring constraints "
-       "(\\ref ref_macklin2016 \"Macklin et al. 2016\")",
+       "(Macklin et al. 2016)",
        MethodFamily::position_based, 1, std::nullopt, nullptr, make_xpbd},
       // Small steps (Chapter 10; Macklin et al. 2019): the same projections, one iteration per substep and many
       // substeps, which buys accuracy by shrinking the step rather than by iterating.
       {"small_steps", "small steps", "one XPBD iteration per substep, many substeps "
-       "(\\ref ref_macklin2019 \"Macklin et al. 2019\")",
+       "(Macklin et al. 2019)",
        MethodFamily::position_based, 1, std::nullopt, nullptr, make_small_steps},
       // The inextensible cloth (Chapter 10): structural springs and one shear diagonal per square as exact distance
       // constraints, the other springs as forces. Fast projection (Goldenthal et al. 2007) projects a symplectic

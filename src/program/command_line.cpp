@@ -186,6 +186,8 @@ void CommandLine::add_switch(std::string flag, std::string help, std::function<v
   chapter_flags_.push_back({std::move(flag), "", std::move(help), {}, std::move(set)});
 }
 
+void CommandLine::declare_outputs(std::function<OutputList(const Options&)> outputs) { outputs_ = std::move(outputs); }
+
 std::string CommandLine::usage() const {
   std::ostringstream u;
   const auto line = [&u](std::string head, const std::string& text, const std::string& fallback) {
@@ -193,7 +195,7 @@ std::string CommandLine::usage() const {
     if (head.size() < 37) head.resize(37, ' ');
     u << head << " " << text << (fallback.empty() ? "" : " (default " + fallback + ")") << "\n";
   };
-  u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (the book's model page, docs/model.md):\n";
+  u << "usage: " << program_ << " [flags]\n" << summary_ << "\n\nScene and run flags (the book's appendix on the programs, docs/back_matter/appendix_programs.md):\n";
   for (const CommonFlag& f : common_flags)
     if (uses(f.name)) {
       std::string accepted = f.accepted;
@@ -208,6 +210,9 @@ std::string CommandLine::usage() const {
       line(std::string(f.name) + " " + f.value_name, accepted, fallback);
     }
   line("--help", "this text", "");
+  if (outputs_)
+    line("--list-outputs", "print the files the run the other flags describe writes into --out (name, kind: fragment, "
+                           "figure_input or data, what it holds) instead of running", "");
   if (!chapter_flags_.empty()) {
     u << "\nChapter flags:\n";
     for (const Flag& f : chapter_flags_) line(f.name + (f.value_name.empty() ? "" : " " + f.value_name), f.help, "");
@@ -216,6 +221,49 @@ std::string CommandLine::usage() const {
        "Exit status: 0 finished, 1 internal error, 2 bad input (nothing written), 3 diverged or a step failed\n"
        "(outputs up to then kept), 4 an output could not be written, 130/143 interrupted (outputs up to then kept).\n";
   return u.str();
+}
+
+std::string CommandLine::markdown_reference() const {
+  // A table cell holds no '|' (it would end the cell: the character entity stands for it) and shows flags and
+  // values as code, each alternative of a value as code of its own.
+  // A flag named in the text ("--dt") is code too: as plain text its "--" would print as a dash.
+  const auto cell = [](const std::string& text) {
+    std::string out;
+    for (std::size_t k = 0; k < text.size(); ++k) {
+      const bool flag_starts = text.compare(k, 2, "--") == 0 && (k == 0 || text[k - 1] == ' ' || text[k - 1] == '(') &&
+                               k + 2 < text.size() && std::isalpha(static_cast<unsigned char>(text[k + 2])) != 0;
+      if (flag_starts) {
+        std::size_t end = k + 2;
+        while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) != 0 || text[end] == '-')) ++end;
+        out += "`" + text.substr(k, end - k) + "`";
+        k = end - 1;
+      } else {
+        out += text[k] == '|' ? std::string("&#124;") : std::string(1, text[k]);
+      }
+    }
+    return out;
+  };
+  const auto code = [](const std::string& text) {
+    std::string out = "`";
+    for (const char c : text) out += c == '|' ? std::string("` or `") : std::string(1, c);
+    return out + "`";
+  };
+  std::ostringstream md;
+  md << "| common flag | accepts | default here |\n|---|---|---|\n";
+  for (const CommonFlag& f : common_flags)
+    if (uses(f.name)) {
+      std::string fallback = std::string(f.name) == "--out" ? "./" + program_ : std::string(f.fallback);
+      for (const auto& [name, value] : defaults_)
+        if (name == f.name) fallback = value;
+      md << "| " << code(std::string(f.name) + " " + f.value_name) << " | " << cell(f.accepted) << " | "
+         << (fallback.find(' ') != std::string::npos ? fallback : fallback.empty() ? "" : code(fallback)) << " |\n";
+    }
+  if (!chapter_flags_.empty()) {
+    md << "\n| " << program_ << "'s own flag | meaning |\n|---|---|\n";
+    for (const Flag& f : chapter_flags_)
+      md << "| " << code(f.name + (f.value_name.empty() ? "" : " " + f.value_name)) << " | " << cell(f.help) << " |\n";
+  }
+  return md.str();
 }
 
 Options CommandLine::parse(int argc, const char* const* argv) const {
@@ -232,11 +280,20 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
     }
   }
   std::vector<std::pair<std::string, std::string>> given;  // flag and value, to refuse a flag given twice
+  bool list_outputs = false;
   for (int k = 1; k < argc; ++k) {
     const std::string flag = argv[k];
     if (flag == "--help" || flag == "-h") {
       std::cout << usage();
       throw HelpRequested{};
+    }
+    if (flag == "--help-markdown") {  // the book's appendix on the programs reads it (cmake/ProgramReference.cmake)
+      std::cout << markdown_reference();
+      throw HelpRequested{};
+    }
+    if (flag == "--list-outputs" && outputs_) {
+      list_outputs = true;
+      continue;
     }
     const Flag* chapter = nullptr;
     for (const Flag& f : chapter_flags_)
@@ -303,6 +360,10 @@ Options CommandLine::parse(int argc, const char* const* argv) const {
     require_memory(static_cast<double>(opt.scene.grid.M) * opt.scene.grid.N * explicit_bytes_per_particle(), "--grid",
                    "a run on a " + std::to_string(opt.scene.grid.M) + "x" + std::to_string(opt.scene.grid.N) + " grid",
                    ": expected a smaller grid");
+  if (list_outputs) {
+    std::cout << output_listing(outputs_(opt));
+    throw HelpRequested{};
+  }
   return opt;
 }
 

@@ -1,10 +1,12 @@
-// The one command-line contract of the model page, shared by every chapter program: the common flags (scene and
-// run), chapter-specific flags on top, and strict validation (one clear line and exit status 2 on bad input).
+// The one command-line contract of the programs (the book's appendix on the programs), shared by every chapter
+// program: the common flags (scene and run), chapter-specific flags on top, and strict validation (one clear line
+// and exit status 2 on bad input).
 #pragma once
 
 #include "base/parse_number.hpp"  // parse_number, parse_integer, parse_count: the flags' one rule
 #include "integrators/simulate.hpp"
 #include "model/scene.hpp"
+#include "program/output_spec.hpp"
 
 #include <functional>
 #include <initializer_list>
@@ -55,6 +57,11 @@ class CommandLine {
   /// A chapter flag without a value.
   void add_switch(std::string flag, std::string help, std::function<void()> set);
 
+  /// Declares the files a run writes into --out (program/output_spec.hpp), as a function of the parsed flags, and
+  /// adds `--list-outputs`: parse then prints them (output_listing) instead of running, and ends as for `--help`.
+  /// The program prepares --out from the same function, so the list the build checks is the one the run uses.
+  void declare_outputs(std::function<OutputList(const Options&)> outputs);
+
   /// Parses argv. Throws InputError naming the flag on any bad input (a flag given twice included),
   /// HelpRequested after printing `--help`. When the program uses the run flags, also checks the run they describe
   /// before anything runs: the number of steps, the numbers of the model at t = 0 (limits.hpp), and the memory of
@@ -62,6 +69,9 @@ class CommandLine {
   Options parse(int argc, const char* const* argv) const;
 
   [[nodiscard]] std::string usage() const;
+  /// The flags the program accepts as Markdown tables for the book's appendix on the programs (`--help-markdown`
+  /// prints it): the common flags it uses with what each accepts and its default here, then the chapter's own.
+  [[nodiscard]] std::string markdown_reference() const;
   [[nodiscard]] const std::string& program() const { return program_; }
   /// Whether the program accepts the common flag `flag`.
   [[nodiscard]] bool uses(const std::string& flag) const;
@@ -76,6 +86,7 @@ class CommandLine {
   std::vector<std::string> common_;  ///< the common flags accepted, in the order `--help` lists them
   std::vector<std::pair<std::string, std::string>> defaults_;  ///< the program's own defaults: flag, value
   std::vector<Flag> chapter_flags_;
+  std::function<OutputList(const Options&)> outputs_;  ///< the declared outputs, when the program declared them
 };
 
 /// Thrown by CommandLine::parse after it printed the usage for `--help`.

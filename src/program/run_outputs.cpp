@@ -4,6 +4,7 @@
 #include "base/format_number.hpp"
 #include "program/interrupt.hpp"
 #include "program/output.hpp"
+#include "program/output_spec.hpp"
 
 #include <algorithm>
 #include <csignal>
@@ -42,7 +43,7 @@ void append_status(KeyValues& kv, const RunResult& result, int signal) {
   }
 }
 
-std::vector<std::string> run_output_names() { return {"final.dat", "energy.dat", "frames.dat", "run.txt"}; }
+std::vector<std::string> run_output_names() { return output_names(run_output_specs()); }
 
 void write_outputs(const RunResult& result, const Stepper& stepper, const RunSettings& settings,
                    const KeyValues& extra) {

@@ -5,7 +5,7 @@
 # displayed formula wider than the text column at a 1280 or an 800 px window. Exit status 0 when there is none,
 # 1 when there are problems, 2 when the check itself could not run.
 #
-#   docs/check_book.sh [HTML_DIR [PAGE.html ...]]
+#   tools/check_book/check_book.sh [HTML_DIR [PAGE.html ...]]
 #
 # HTML_DIR defaults to build/docs/html (`cmake --build build --target check_book` builds the book and runs this);
 # PAGEs restrict the check to those pages (links into the other pages are checked against their HTML as written).

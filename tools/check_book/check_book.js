@@ -1,4 +1,4 @@
-// The book's browser check, run by docs/check_book.sh inside headless Chromium: loads every page of the book in
+// The book's browser check, run by tools/check_book/check_book.sh inside headless Chromium: loads every page of the book in
 // an iframe as wide as a browser window, lets MathJax finish, and lists what a reader would see broken: formula
 // errors, raw formula commands and other raw markup (an escaped '|', '--' printed as a dash, \ref), missing
 // images, links to missing files or anchors, and figures, tables or formulas wider than the text column. The verdict is written into <pre id="verdict">, one problem per line.

@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
-# The browser check's test: docs/check_book.sh on docs/check_book_fixture/ must exit 1 and report each defect of
+# The browser check's test: check_book.sh on fixture/ (both beside this script) must exit 1 and report each defect of
 # bad.html (a formula error, a raw formula command, a missing image, a figure too wide at both window widths, a
 # table too wide at 800 px only, a link to a missing file, a link to a missing anchor, a backslash before '|', an
 # en dash before a flag name, a raw \ref or \f$ in a listing) and nothing else; the good page (MathJax with its AMS
 # extensions, a figure and table that fit, links that resolve, and the look-alikes of the markup defects that are
 # not defects: a '|' in code, en dashes between numbers and names, \| in a formula) must pass.
-#   docs/check_book_selftest.sh [MATHJAX_DIR]      (default /usr/share/javascript/mathjax)
+#   tools/check_book/check_book_selftest.sh [MATHJAX_DIR]      (default /usr/share/javascript/mathjax)
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 mathjax=${1:-/usr/share/javascript/mathjax}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cp -r "$here/check_book_fixture" "$work/html"
+cp -r "$here/fixture" "$work/html"
 ln -s "$mathjax" "$work/html/mathjax"
 
 "$here/check_book.sh" "$work/html" > "$work/out.txt" 2>&1

@@ -6,7 +6,7 @@
 # module does not load, or that writes no final state, fails. Exit status 0 when every case agrees, 1 when one does
 # not, 2 when the check itself could not run.
 #
-#   docs/check_demos.sh [HTML_DIR [BIN_DIR [CASE ...]]]     (defaults build/docs/html, build/bin, the cases below)
+#   tools/check_demos.sh [HTML_DIR [BIN_DIR [CASE ...]]]     (defaults build/docs/html, build/bin, the cases below)
 #
 # A CASE is a page and its flags, as below: ch03.html?method=rk4&dt=0.002&t-end=1.
 #
