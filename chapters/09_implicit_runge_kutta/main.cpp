@@ -360,7 +360,7 @@ int main(int argc, char** argv) {
                 [&](const std::string& s) { tableau_argument = s; });
   cli.add_value("--tol", "TOL",
                 "step control on the embedded error estimate, max |e| / (1 + |y|) <= TOL (embedded pairs only: "
-                "trbdf2); --dt is then the first step",
+                "trbdf2, esdirk32, esdirk43); --dt is then the first step",
                 [&](const std::string& s) {
                   const double t = parse_number(s);
                   if (!(t > 0) || t >= 1) throw InputError("expected a number in (0, 1), got " + s);

@@ -42,7 +42,8 @@ std::string linked(std::string text) {
       {"Alexander 1977", "ref_alexander1977"},         {"Bogacki & Shampine 1989", "ref_bogacki1989"},
       {"Cash & Karp 1990", "ref_cash1990"},            {"Crank & Nicolson 1947", "ref_crank1947"},
       {"Dormand & Prince 1980", "ref_dormand1980"},    {"Fehlberg 1969", "ref_fehlberg1969"},
-      {"Hosea & Shampine 1996", "ref_hosea1996"},      {"Tsitouras 2011", "ref_tsitouras2011"}};
+      {"Hosea & Shampine 1996", "ref_hosea1996"},      {"Tsitouras 2011", "ref_tsitouras2011"},
+      {"Kennedy & Carpenter 2016", "ref_kennedy2016"}};
   for (const auto& [citation, anchor] : citations) {
     const std::size_t at = text.find(citation);
     if (at != std::string::npos)
