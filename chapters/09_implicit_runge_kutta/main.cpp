@@ -17,11 +17,11 @@
 #include "program/method_tables.hpp"
 #include "program/output.hpp"
 #include "program/run_outputs.hpp"
+#include "program/timing.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <memory>
 #include <optional>
 #include <sys/stat.h>
@@ -236,11 +236,11 @@ void work_precision(const SceneParams& p, double T, const std::vector<double>& h
         RunResult r;
         for (int k = 0; k < repeats; ++k) {
           const std::unique_ptr<NewtonStepper> stepper = make_method(m, field);
-          const std::clock_t start = std::clock();  // processor time: the machine's other work does not count
+          const double start = thread_cpu_seconds();  // the machine's other work does not count
           r = simulate(*stepper, run, false);
           // Stopped by a signal: the study's files are not written, so none lists the run as finished.
           throw_if_interrupted();
-          best = std::min(best, static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
+          best = std::min(best, thread_cpu_seconds() - start);
         }
         const double error =
             r.status == RunStatus::ok ? (r.x - reference).lpNorm<Eigen::Infinity>() : NAN;
