@@ -77,8 +77,8 @@ TEST_CASE("every registered tableau satisfies the order conditions of the order 
     if (!m.tableau) continue;
     INFO(m.name);
     // Tableaus given as fractions hold their conditions to a few ulps; Tsitouras published his as 16-digit
-    // decimals, which hold them to about 1e-14.
-    const double rounding = m.name == "tsit5" ? 1e-13 : 1e-15;
+    // decimals, which hold them to about 1e-14, and ESDIRK3(2)4L[2]SA's embedded weights are 17-digit decimals.
+    const double rounding = m.name == "tsit5" || m.name == "esdirk32" ? 1e-13 : 1e-15;
     for (int p = 1; p <= m.order; ++p) CHECK(order_condition_defect(*m.tableau, p) < rounding);
     if (m.order < 4) CHECK(order_condition_defect(*m.tableau, m.order + 1) > 1e-3);
     if (m.tableau->has_embedded())

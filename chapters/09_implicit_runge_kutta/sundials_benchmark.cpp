@@ -5,6 +5,9 @@
 #include "program/command_line.hpp"
 #include "base/format_number.hpp"
 #include "base/input_error.hpp"
+#include "analysis/trajectory_measures.hpp"
+#include "integrators/configuration.hpp"
+#include "integrators/implicit_step_control.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/fragment.hpp"
@@ -13,6 +16,7 @@
 #include "program/output.hpp"
 #include "program/run_outputs.hpp"
 #include "program/sundials.hpp"
+#include "program/timing.hpp"
 
 #include <arkode/arkode_arkstep.h>
 #include <cvode/cvode.h>
@@ -22,7 +26,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -92,8 +95,9 @@ struct ClothSystem {
 struct Outcome {
   bool ok = false;
   SundialsEnd end;  // the status in the model page's terms, and SUNDIALS' own flag
-  double seconds = 0;  // processor time of the integration alone
+  double seconds = 0;  // the thread's processor time of the integration alone
   long steps = 0, newton_iterations = 0, setups = 0, convergence_failures = 0;
+  long long rhs_evaluations = 0, jacobian_evaluations = 0;  // the right-hand side's and the Jacobian's
   double t = 0, failed_t = 0;  // the time reached; the time the step that failed was heading for
 };
 
@@ -131,7 +135,7 @@ void read_counters(void* mem, const Counters& get, Outcome& out) {
 // CVODE BDF (orders 1-5, variable step) or ARKODE (its default third-order ESDIRK of Kennedy & Carpenter, or the
 // one-stage backward Euler table at the fixed step h), KLU on the analytic Jacobian, to T.
 Outcome integrate(const std::string& solver, ClothSystem& system, N_Vector y, double T, double rtol, double atol,
-                  double h, SUNContext context) {
+                  double h, int max_order, SUNContext context) {
   const sunindextype N = 2 * system.n;
   SUNMatrix A = allocated(SUNSparseMatrix(N, N, system.nonzeros(), CSC_MAT, context));
   SUNLinearSolver klu = SUNLinSol_KLU(y, A, context);
@@ -140,7 +144,7 @@ Outcome integrate(const std::string& solver, ClothSystem& system, N_Vector y, do
   Outcome out;
   realtype t = 0;
   int flag = 0;
-  const std::clock_t start = std::clock();
+  const double start = thread_cpu_seconds();
   if (solver == "cvode-bdf") {
     void* mem = allocated(CVodeCreate(CV_BDF, context));
     check(CVodeSetErrFile(mem, nullptr), "CVodeSetErrFile");  // a failure is reported in run.txt's terms
@@ -150,6 +154,7 @@ Outcome integrate(const std::string& solver, ClothSystem& system, N_Vector y, do
     check(CVodeSetLinearSolver(mem, klu, A), "CVodeSetLinearSolver");
     check(CVodeSetJacFn(mem, ClothSystem::jacobian), "CVodeSetJacFn");
     check(CVodeSetMaxNumSteps(mem, 1000000), "CVodeSetMaxNumSteps");
+    if (max_order < 5) check(CVodeSetMaxOrd(mem, max_order), "CVodeSetMaxOrd");
     flag = CVode(mem, T, y, &t, CV_NORMAL);  // its own Nordsieck interpolant of order q gives y(T)
     out.t = t;
     read_counters(mem, {CVodeGetNumSteps, CVodeGetNumNonlinSolvConvFails, CVodeGetNumNonlinSolvIters,
@@ -187,7 +192,9 @@ Outcome integrate(const std::string& solver, ClothSystem& system, N_Vector y, do
     ARKStepFree(&mem);
     if (euler) ARKodeButcherTable_Free(euler);
   }
-  out.seconds = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+  out.seconds = thread_cpu_seconds() - start;
+  out.rhs_evaluations = system.rhs_evaluations;
+  out.jacobian_evaluations = system.jacobian_evaluations;
   const bool finite = Eigen::Map<const Vector>(N_VGetArrayPointer(y), N).allFinite();
   out.end = sundials_end(flag, solver == "cvode-bdf", finite);
   out.ok = out.end.status == RunStatus::ok;
@@ -199,7 +206,7 @@ Outcome integrate(const std::string& solver, ClothSystem& system, N_Vector y, do
 
 // One SUNDIALS run of the scene from its initial state: the outcome and the final free positions and velocities.
 Outcome sundials_run(const std::string& solver, ForceField& field, double T, double rtol, double atol, double h,
-                     Vector& x, Vector& v) {
+                     Vector& x, Vector& v, int max_order = 5) {
   ClothSystem system(field);
   SUNContext context = nullptr;
   check(SUNContext_Create(nullptr, &context), "SUNContext_Create");
@@ -208,7 +215,7 @@ Outcome sundials_run(const std::string& solver, ForceField& field, double T, dou
   allocated(y);
   Eigen::Map<Vector>(N_VGetArrayPointer(y), system.n) = field.scene().initial_positions();
   Eigen::Map<Vector>(N_VGetArrayPointer(y) + system.n, system.n) = field.scene().initial_velocities();
-  Outcome out = integrate(solver, system, y, T, rtol, atol, h, context);
+  Outcome out = integrate(solver, system, y, T, rtol, atol, h, max_order, context);
   x = Eigen::Map<const Vector>(N_VGetArrayPointer(y), system.n);
   v = Eigen::Map<const Vector>(N_VGetArrayPointer(y) + system.n, system.n);
   N_VDestroy(y);
@@ -233,6 +240,9 @@ Vector rk4_positions(ForceField& field, double T, double h_ref) {
 struct Timed {
   std::string solver, setting;
   double error = NAN, seconds = INFINITY;
+  // The work: factorizations (SUNDIALS: linear solver setups), Jacobian evaluations, Newton iterations and
+  // evaluations of the forces.
+  long long factorizations = 0, jacobians = 0, newton_iterations = 0, forces = 0;
 };
 
 // A registered implicit method at the fixed step h, modified Newton stopped at newton_tol: best of `repeats`.
@@ -249,28 +259,86 @@ Timed project_run(ForceField& field, const std::string& method, double h, double
   run.stop = &interrupt_flag();
   for (int k = 0; k < repeats; ++k) {
     const auto stepper = make_newton_stepper(method, field, settings);
-    const std::clock_t start = std::clock();
+    const double start = thread_cpu_seconds();
     const RunResult r = simulate(*stepper, run, false);
     // An interrupted study stops here: the tables are written only once every run is whole, so none lists a run
     // that did not finish.
     throw_if_interrupted();
-    t.seconds = std::min(t.seconds, static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
+    t.seconds = std::min(t.seconds, thread_cpu_seconds() - start);
     if (r.status != RunStatus::ok) return t;
+    t.factorizations = r.counters.factorizations;
+    t.jacobians = r.counters.jacobian_assemblies;
+    t.newton_iterations = r.counters.newton_iterations;
+    t.forces = r.counters.rhs_evaluations;
     t.error = (r.x - reference).lpNorm<Eigen::Infinity>();
     if (x_out) *x_out = r.x;
   }
   return t;
 }
 
-/// Both sides' runs on the stiff cloth: CVODE's at each tolerance, the book's at each step.
+// A controlled run of an embedded pair at the error tolerance `tol` from a first step of 1 ms: modified Newton on
+// the stage equations as they are, stopped at a tenth of tol (the chapter's defaults for a controlled run).
+Timed controlled_run(ForceField& field, const std::string& method, double tol, double T, const Vector& reference,
+                     int repeats) {
+  Configuration c;
+  c.method = method;
+  c.settings.newton.variant = NewtonVariant::modified;
+  c.settings.newton.line_search = LineSearch::residual;
+  c.settings.newton.tolerance = 0.1 * tol;
+  c.settings.newton.estimate_test = true;
+  Timed t{configuration_name(c), "tol = " + format_number(tol, 3)};
+  RunSettings run;
+  run.dt = 1e-3;
+  run.t_end = T;
+  run.frames = 1;
+  run.stop = &interrupt_flag();
+  StepControl control;
+  control.tolerance = tol;
+  for (int k = 0; k < repeats; ++k) {
+    DiagonallyImplicitRungeKutta stepper(field, builtin_implicit_tableau(method), c.settings.newton);
+    const double start = thread_cpu_seconds();
+    const ControlledRun r = simulate_controlled(stepper, run, control);
+    t.seconds = std::min(t.seconds, thread_cpu_seconds() - start);
+    throw_if_interrupted();
+    if (r.result.status != RunStatus::ok) return t;
+    t.factorizations = r.result.counters.factorizations;
+    t.jacobians = r.result.counters.jacobian_assemblies;
+    t.newton_iterations = r.result.counters.newton_iterations;
+    t.forces = r.result.counters.rhs_evaluations;
+    t.error = largest_distance(r.result.x, reference);
+  }
+  return t;
+}
+
+// One CVODE run (BDF up to `max_order`, KLU, the analytic Jacobian) at rtol = atol = tol: best of `repeats`.
+Timed cvode_run(ForceField& field, int max_order, double tol, double T, const Vector& reference, int repeats) {
+  Timed t{max_order < 5 ? "CVODE BDF, order <= " + std::to_string(max_order) : std::string("CVODE BDF"),
+          "rtol = atol = " + format_number(tol, 3)};
+  for (int k = 0; k < repeats; ++k) {
+    Vector x, v;
+    const Outcome out = sundials_run("cvode-bdf", field, T, tol, tol, 0, x, v, max_order);
+    throw_if_interrupted();
+    t.seconds = std::min(t.seconds, out.seconds);
+    if (!out.ok) return t;
+    t.error = largest_distance(x, reference);
+    t.factorizations = out.setups;
+    t.jacobians = out.jacobian_evaluations;
+    t.newton_iterations = out.newton_iterations;
+    t.forces = out.rhs_evaluations;
+  }
+  return t;
+}
+
+/// Both sides' runs on the stiff cloth: CVODE's at each tolerance, the book's at each tolerance or step.
 struct StiffRuns {
   std::vector<Timed> cvode, book;
   int repeats = 1;
+  double reference_change = 0;  // how far the reference moves when its step is halved [m]
 };
 
 // [speed_comparison]
-// On the stiff cloth (5000, 20) over T = 0.4 s: CVODE's BDF at a ladder of tolerances and the book's SDIRKs at a
-// ladder of steps, each Newton tolerance a tenth or a hundredth of the error it aims at.
+// On the stiff cloth (5000, 20) over T = 0.4 s: CVODE's BDF (orders 1-5, and capped at 2) and the book's embedded
+// pairs at the tolerances 10^(-k/4), and the book's SDIRKs at a ladder of fixed steps.
 StiffRuns stiff_runs(const SceneParams& base, bool quick) {
   SceneParams p = base;
   p.stiffness = 5000;
@@ -281,17 +349,19 @@ StiffRuns stiff_runs(const SceneParams& base, bool quick) {
   const Scene scene(p);
   ForceField field(scene);
   const Vector reference = rk4_positions(field, T, 2e-5);
-  for (const double tol : {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5}) {
-    Timed t{"cvode-bdf", "rtol = atol = " + format_number(tol)};
-    for (int k = 0; k < runs.repeats; ++k) {
-      Vector x, v;
-      const Outcome out = sundials_run("cvode-bdf", field, T, tol, tol, 0, x, v);
-      throw_if_interrupted();
-      t.seconds = std::min(t.seconds, out.seconds);
-      if (out.ok) t.error = (x - reference).lpNorm<Eigen::Infinity>();
-    }
-    runs.cvode.push_back(t);
-  }
+  runs.reference_change = largest_distance(reference, rk4_positions(field, T, 1e-5));
+  // The quick run (the plots target) takes every fourth rung (1e-2, 1e-3, ...), CVODE at its default orders and
+  // the two ESDIRK pairs only; the full run every rung, CVODE also capped at order 2, TR-BDF2 and fixed steps.
+  const int k_step = quick ? 4 : 1;
+  for (int k = 8; k <= 28; k += k_step)
+    for (const int max_order : {5, 2})
+      if (!quick || max_order == 5)
+        runs.cvode.push_back(cvode_run(field, max_order, std::pow(10.0, -k / 4.0), T, reference, runs.repeats));
+  for (const char* pair : {"trbdf2", "esdirk32", "esdirk43"})
+    for (int k = 4; k <= 24; k += k_step)
+      if (!quick || std::string(pair) != "trbdf2")
+        runs.book.push_back(controlled_run(field, pair, std::pow(10.0, -k / 4.0), T, reference, runs.repeats));
+  if (quick) return runs;
   const struct {
     const char* method;
     double h, newton_tol;
@@ -312,23 +382,37 @@ const Timed* fastest_reaching(const std::vector<Timed>& runs, double level) {
 }
 // [speed_comparison]
 
-// Every run into stiff_runs.dat (the figure), and for each error level the fastest run of each side and the ratio
-// of their processor times into stiff_comparison.md (the page's table).
+// Every run into stiff_runs.dat (the figure); for each error level the fastest run of each side and the ratio of
+// their processor times into stiff_comparison.md, and their work into stiff_work.md (the page's tables).
 void stiff_comparison(const SceneParams& base, bool quick, const std::string& dir, const std::string& command) {
   const StiffRuns runs = stiff_runs(base, quick);
   OutputFile all(dir + "/stiff_runs.dat");
-  std::fprintf(all.get(), "# stiff cloth K = 5000, D = 20, T = 0.4 s; error against RK4 at h = 2e-5 [m], processor "
-               "seconds (best of %d)\n# index 0: CVODE BDF + KLU, index 1: the book's methods\n", runs.repeats);
+  std::fprintf(all.get(), "# stiff cloth K = 5000, D = 20, T = 0.4 s; error against RK4 at h = 2e-5 [m] (which moves "
+               "%.2e m at h = 1e-5), thread processor seconds (best of %d)\n# index 0: CVODE BDF + KLU, index 1: "
+               "the book's methods\n# error seconds factorizations jacobians newton_iterations forces \"run\"\n",
+               runs.reference_change, runs.repeats);
   for (const auto* side : {&runs.cvode, &runs.book}) {
     for (const Timed& t : *side)
-      std::fprintf(all.get(), "%.6e %.6f \"%s %s\"\n", t.error, t.seconds, t.solver.c_str(), t.setting.c_str());
+      std::fprintf(all.get(), "%.6e %.6f %lld %lld %lld %lld \"%s, %s\"\n", t.error, t.seconds, t.factorizations,
+                   t.jacobians, t.newton_iterations, t.forces, t.solver.c_str(), t.setting.c_str());
+    std::fprintf(all.get(), "\n\n");
+  }
+  // Index 2 and 3: for each level 10^(-k/4), the time of each side's fastest run reaching it (the diagram's lines).
+  for (const auto* side : {&runs.cvode, &runs.book}) {
+    for (int k = 8; k <= 24; ++k)
+      if (const Timed* t = fastest_reaching(*side, std::pow(10.0, -k / 4.0)))
+        std::fprintf(all.get(), "%.6e %.6f\n", std::pow(10.0, -k / 4.0), t->seconds);
     std::fprintf(all.get(), "\n\n");
   }
   all.commit();
-  MarkdownTable table({"error level [m]", "CVODE BDF + KLU, fastest run reaching it", "error [m]", "time [s]",
+  MarkdownTable table({"error level [m]", "CVODE's fastest run reaching it", "error [m]", "time [s]",
                        "the book's fastest run reaching it", "error [m]", "time [s]", "time ratio"},
                       "rlrrlrrr");
-  for (const double level : {1e-2, 1e-3, 1e-4}) {
+  // CVODE's factorizations are its linear solver setups (each a new I - gamma J factored by KLU).
+  MarkdownTable work({"error level [m]", "run", "factorizations", "Jacobians", "Newton iterations",
+                      "force evaluations"},
+                     "rlrrrr");
+  for (const double level : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6}) {
     const Timed* c = fastest_reaching(runs.cvode, level);
     const Timed* b = fastest_reaching(runs.book, level);
     const auto cells = [](const Timed* t) -> std::vector<std::string> {
@@ -340,8 +424,17 @@ void stiff_comparison(const SceneParams& base, bool quick, const std::string& di
     for (const std::string& cell : cells(b)) row.push_back(cell);
     row.push_back(c && b ? format_number(b->seconds / c->seconds, 2) : "");
     table.add_row(row);
+    for (const Timed* t : {c, b})
+      if (t != nullptr)
+        work.add_row({format_number(level), t->solver + ", " + t->setting, std::to_string(t->factorizations),
+                      std::to_string(t->jacobians), std::to_string(t->newton_iterations), std::to_string(t->forces)});
   }
   write_table_fragment(dir + "/stiff_comparison.md", table, command);
+  write_table_fragment(dir + "/stiff_work.md", work, command);
+  write_text_fragment(dir + "/stiff_reference.md",
+                      "The reference is RK4 at h = 2·10⁻⁵ s; at h = 10⁻⁵ s it moves by " +
+                          format_number(runs.reference_change, 2) + " m, so it is good to that order at every "
+                          "level of the table.\n");
 }
 
 // On the report scene (200, 20), implicit Euler at h = 0.01 s over T = 1 s: ARKODE given the one-stage table at
@@ -419,7 +512,8 @@ int main(int argc, char** argv) {
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     const std::vector<std::string> single_run = {"final.dat", "run.txt"};
-    const std::vector<std::string> report_runs = {"stiff_runs.dat", "stiff_comparison.md", "report_scene.md"};
+    const std::vector<std::string> report_runs = {"stiff_runs.dat", "stiff_comparison.md", "stiff_work.md",
+                                                  "stiff_reference.md", "report_scene.md"};
     const long long particles = static_cast<long long>(opt.scene.grid.M) * opt.scene.grid.N;
     const std::string grid = std::to_string(opt.scene.grid.M) + "x" + std::to_string(opt.scene.grid.N);
     // KLU's factors of the 6n first-order system, far more than an explicit run's vectors (parse's check).

@@ -39,6 +39,8 @@ ControlledRun simulate_controlled(DiagonallyImplicitRungeKutta& stepper, const R
   Vector x = result.x, v = result.v;
   double t = 0, h = settings.dt;
   run.smallest_step = INFINITY;
+  StepController controller(control.controller, q + 1, control.safety, control.max_shrink, control.max_growth);
+  bool after_newton_failure = false;
   stepper.reset_counters();
   const auto start = std::chrono::steady_clock::now();
   // [controlled_loop]
@@ -57,15 +59,18 @@ ControlledRun simulate_controlled(DiagonallyImplicitRungeKutta& stepper, const R
     x = result.x;
     v = result.v;
     if (!stepper.step(step_h, x, v)) {
-      ++run.newton_failures;  // Newton could not solve the stages: try again smaller
+      // Newton could not solve the stages: the step retreats, whatever the error estimate last said.
+      ++run.newton_failures;
       h = step_h * control.newton_shrink;
+      after_newton_failure = true;
       continue;
     }
     const double err = scaled_error(stepper.error_positions(), stepper.error_velocities(), x, v, control.tolerance);
-    const double factor = control.safety * std::pow(std::max(err, 1e-10), -1.0 / (q + 1));
-    if (!(err <= 1)) {
+    const bool accepted = err <= 1;  // false for a NaN estimate too
+    const double factor = controller.factor(std::isfinite(err) ? err : INFINITY, accepted);
+    if (!accepted) {
       ++run.rejected_steps;
-      h = step_h * std::clamp(factor, control.max_shrink, 1.0);
+      h = step_h * factor;
       continue;
     }
     if (const std::string why = divergence_reason(x, v, radius); !why.empty()) {
@@ -87,8 +92,10 @@ ControlledRun simulate_controlled(DiagonallyImplicitRungeKutta& stepper, const R
       scene.all_positions(x, result.frames.back().positions);
       ++next_frame;
     }
-    // The controller's proposal for the next step; a step shortened to meet a frame does not shrink it.
-    const double proposal = step_h * std::min(control.max_growth, factor);
+    // The controller's proposal for the next step; a step shortened to meet a frame does not shrink it, and the
+    // step after a Newton failure does not grow.
+    const double proposal = step_h * (after_newton_failure ? std::min(factor, 1.0) : factor);
+    after_newton_failure = false;
     h = to_frame && step_h < h ? std::max(h, proposal) : proposal;
   }
   // [controlled_loop]

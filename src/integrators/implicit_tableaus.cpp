@@ -66,6 +66,61 @@ double alexander_gamma3() {
   return g;
 }
 
+// Kennedy & Carpenter's ESDIRK3(2)4L[2]SA (2016 review, section 5.1.2): four stages, the first explicit, c_2 =
+// 2 gamma (stage 2 is a trapezoidal step), c_3 = 3/5, stiffly accurate, order 3, and gamma = 0.4358665215...
+// the same root as Alexander's, the one that makes R(infinity) = 0. With gamma and c_3 chosen, the four
+// third-order conditions on b = (a_41, a_42, a_43, gamma) fix b_1, b_2, b_3 and a_32:
+//   b_2 c_2 + b_3 c_3 = 1/2 - gamma,  b_2 c_2^2 + b_3 c_3^2 = 1/3 - gamma          (b c = 1/2, b c^2 = 1/3)
+//   b_2 (2 gamma^2) + b_3 (a_32 c_2 + gamma c_3) + gamma / 2 = 1/6                 (b A c = 1/6)
+//   b_1 = 1 - gamma - b_2 - b_3,  a_31 = c_3 - gamma - a_32.
+// The embedded weights are the review's (second order, chosen there for their stability and error properties),
+// to 17 significant digits.
+ImplicitTableau esdirk32() {
+  const double g = alexander_gamma3(), c2 = 2 * g, c3 = 0.6;
+  const double r1 = 0.5 - g, r2 = 1.0 / 3 - g;
+  const double det = c2 * c3 * c3 - c3 * c2 * c2;
+  const double b2 = (r1 * c3 * c3 - r2 * c3) / det, b3 = (c2 * r2 - c2 * c2 * r1) / det;
+  const double b1 = 1 - g - b2 - b3;
+  const double a32 = ((1.0 / 6 - g / 2 - 2 * g * g * b2) / b3 - g * c3) / c2, a31 = c3 - g - a32;
+  ImplicitTableau t = make("esdirk32", 3, {{0, 0, 0, 0}, {g, g, 0, 0}, {a31, a32, g, 0}, {b1, b2, b3, g}},
+                           {b1, b2, b3, g}, "Kennedy & Carpenter (2016), ESDIRK3(2)4L[2]SA");
+  t.method.b_hat = Eigen::Vector4d(0.10889661761586122, -0.91532581187071183, 1.2712735973021543,
+                                   0.53515559695269621);
+  t.method.embedded_order = 2;
+  return t;
+}
+
+// Kennedy & Carpenter's ESDIRK4(3)6L[2]SA (2016 review, Table 16): six stages, the first explicit, gamma = 1/4,
+// c = (0, 1/2, (2 - sqrt 2)/4, 5/8, 26/25, 1), stiffly accurate, order 4, L-stable; the coefficients in the
+// closed forms of the review, each row's first entry from c_i = sum_j a_ij (a_i1 = a_i2 in every row). The
+// embedded weights (order 3) are the review's rationals.
+ImplicitTableau esdirk43() {
+  const double r2 = std::sqrt(2.0), g = 0.25;
+  const double c3 = (2 - r2) / 4, c4 = 5.0 / 8, c5 = 26.0 / 25;
+  const double a32 = (1 - r2) / 8, a31 = c3 - a32 - g;
+  const double a42 = (5 - 7 * r2) / 64, a43 = 7 * (1 + r2) / 32, a41 = c4 - a42 - a43 - g;
+  const double a52 = (-13796 - 54539 * r2) / 125000, a53 = (506605 + 132109 * r2) / 437500;
+  const double a54 = 166 * (-97 + 376 * r2) / 109375, a51 = c5 - a52 - a53 - a54 - g;
+  const double b2 = (1181 - 987 * r2) / 13782, b3 = 47 * (-267 + 1783 * r2) / 273343;
+  const double b4 = -16 * (-22922 + 3525 * r2) / 571953, b5 = -15625 * (97 + 376 * r2) / 90749876;
+  const double b1 = 1 - b2 - b3 - b4 - b5 - g;
+  ImplicitTableau t = make("esdirk43", 4,
+                           {{0, 0, 0, 0, 0, 0},
+                            {g, g, 0, 0, 0, 0},
+                            {a31, a32, g, 0, 0, 0},
+                            {a41, a42, a43, g, 0, 0},
+                            {a51, a52, a53, a54, g, 0},
+                            {b1, b2, b3, b4, b5, g}},
+                           {b1, b2, b3, b4, b5, g}, "Kennedy & Carpenter (2016), ESDIRK4(3)6L[2]SA");
+  const double h2 = -480923228411.0 / 4982971448372, h3 = 6709447293961.0 / 12833189095359;
+  const double h4 = 3513175791894.0 / 6748737351361, h5 = -498863281070.0 / 6042575550617;
+  const double h6 = 2077005547802.0 / 8945017530137;
+  t.method.b_hat.resize(6);
+  t.method.b_hat << 1 - h2 - h3 - h4 - h5 - h6, h2, h3, h4, h5, h6;
+  t.method.embedded_order = 3;
+  return t;
+}
+
 }  // namespace
 
 bool ImplicitTableau::stiffly_accurate() const {
@@ -102,6 +157,9 @@ const std::vector<ImplicitTableau>& builtin_implicit_tableaus() {
     // the second-order step (Hosea & Shampine 1996).
     t.back().method.b_hat = Eigen::Vector3d((1 - w) / 3, (3 * w + 1) / 3, d / 3);
     t.back().method.embedded_order = 3;
+    // Kennedy & Carpenter's stiffly accurate, L-stable ESDIRK pairs, for step control at third and fourth order.
+    t.push_back(esdirk32());
+    t.push_back(esdirk43());
     return t;
   }();
   // [implicit_tableaus]

@@ -33,8 +33,8 @@ struct ImplicitTableau {
 /// would mislabel the method), b^ different from b. Throws InputError naming what fails.
 void validate(const ImplicitTableau& tableau);
 
-/// implicit_euler (backward Euler), implicit_midpoint, trapezoid, sdirk2, sdirk3, trbdf2: the coefficients of
-/// the method registry's diagonally implicit rows, with their sources.
+/// implicit_euler (backward Euler), implicit_midpoint, trapezoid, sdirk2, sdirk3, trbdf2, esdirk32, esdirk43: the
+/// coefficients of the method registry's diagonally implicit rows, with their sources.
 const std::vector<ImplicitTableau>& builtin_implicit_tableaus();
 
 /// The built-in tableau called `name`; throws InputError when there is none (the method registry lists them).

@@ -289,6 +289,10 @@ const std::vector<Method>& methods() {
                           nullptr),
       diagonally_implicit("trbdf2", "TR-BDF2", "step control (Hosea & Shampine 1996)",
                           nullptr),
+      diagonally_implicit("esdirk32", "ESDIRK3(2)4L[2]SA",
+                          "stiffly accurate, L-stable, step control (Kennedy & Carpenter 2016)", nullptr),
+      diagonally_implicit("esdirk43", "ESDIRK4(3)6L[2]SA",
+                          "stiffly accurate, L-stable, step control (Kennedy & Carpenter 2016)", nullptr),
       // [implicit_rows]
       // Local/global (Chapter 10; Liu, Bargteil, O'Brien & Kavan 2013): implicit Euler's step again, its equations
       // solved by a fixed number of alternating spring projections and solves with a constant matrix instead of

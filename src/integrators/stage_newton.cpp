@@ -272,6 +272,17 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
       counters_.newton_iterations += k;
       return true;
     }
+    // Hairer and Wanner's test: with contraction theta the iterate is within theta / (1 - theta) |dv| of the
+    // solution, so a fast contraction stops before |dv| itself is small. The first update of a solve uses the
+    // rate of the one before.
+    if (settings_.estimate_test && k > 0 && std::isfinite(residual)) {
+      const double theta = k > 1 ? update / previous_update : std::pow(contraction_, 0.8);  // HW's caution
+      if (k > 1) contraction_ = theta;
+      if (theta < 1 && theta / (1 - theta) * update <= tol * scale) {
+        counters_.newton_iterations += k;
+        return true;
+      }
+    }
     if (k == settings_.max_iterations) break;
     // Newton update: J dv = -r with J = M - gamma df/dv - gamma^2 df/dx, at (x~ + gamma V, V) when fresh.
     bool fresh = stale;

@@ -69,6 +69,12 @@ struct NewtonSettings {
   int cg_max_iterations = 2000;
   NewtonVariant variant = NewtonVariant::full;
   LineSearch line_search = LineSearch::potential;
+  /// Stop on Hairer and Wanner's estimate of the iteration's remaining error instead of the two tests above:
+  /// converged when theta / (1 - theta) |dv|_inf <= tol (1 + |V|_inf), theta the observed contraction
+  /// |dv_k| / |dv_{k-1}| (from the previous solve for a first iteration), which for a fast contraction stops one
+  /// iteration earlier (Hairer & Wanner 1996, IV.8). For the controlled runs of Chapter 9, whose tol is tied to
+  /// the error tolerance.
+  bool estimate_test = false;
 
   /// Whether the iteration is the one-iteration step (variant one, or a limit of one iteration).
   [[nodiscard]] bool one_iteration() const { return variant == NewtonVariant::one || max_iterations == 1; }
@@ -160,6 +166,7 @@ class StageNewton {
   // Modified Newton: whether A_ holds a usable factorization, for which gamma, and how many steps ago.
   bool factored_ = false;
   double factored_gamma_ = 0;
+  double contraction_ = 1;  // the last contraction rate observed, for the estimate test's first iteration
   int steps_since_refresh_ = 0;
 };
 

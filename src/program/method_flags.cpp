@@ -24,6 +24,17 @@ StiffnessTreatment default_treatment(LinearSolverKind solver, bool nonsymmetric)
 
 void NewtonFlags::note(const char* flag) {
   if (first_given_.empty()) first_given_ = flag;
+  given_.emplace_back(flag);
+}
+
+bool NewtonFlags::given(const std::string& flag) const {
+  return std::find(given_.begin(), given_.end(), flag) != given_.end();
+}
+
+void NewtonFlags::apply_defaults(const Defaults& defaults) {
+  if (defaults.variant && !given("--newton")) newton_.variant = *defaults.variant;
+  if (defaults.tolerance && !given("--newton-tol")) newton_.tolerance = *defaults.tolerance;
+  if (defaults.line_search && !given("--line-search")) newton_.line_search = *defaults.line_search;
 }
 
 void NewtonFlags::add_to(CommandLine& cli) {

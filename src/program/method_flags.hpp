@@ -41,6 +41,18 @@ class NewtonFlags {
   /// The first of the six flags given on the command line, or empty: a program refuses it for a method that
   /// has no Newton iteration.
   [[nodiscard]] const std::string& first_given() const { return first_given_; }
+  /// Whether `flag` (one of the six) was given on the command line.
+  [[nodiscard]] bool given(const std::string& flag) const;
+
+  /// A program's own defaults for some of the flags, each applied only when its flag was not given (after
+  /// cli.parse, before settings_for): Chapter 9's controlled runs take modified Newton, the residual form and a
+  /// Newton tolerance tied to the error tolerance.
+  struct Defaults {
+    std::optional<NewtonVariant> variant;
+    std::optional<double> tolerance;
+    std::optional<LineSearch> line_search;
+  };
+  void apply_defaults(const Defaults& defaults);
 
  private:
   void note(const char* flag);
@@ -48,6 +60,7 @@ class NewtonFlags {
   std::optional<StiffnessTreatment> jacobian_;
   bool max_iterations_given_ = false;
   std::string first_given_;
+  std::vector<std::string> given_;
 };
 
 /// run.txt's lines for Newton's settings (resolved: the solver the automatic choice picked): newton,
