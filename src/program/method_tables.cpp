@@ -40,9 +40,9 @@ std::string stability_cell(const TableauProperties& p) {
 std::string linked(std::string text) {
   static const std::pair<const char*, const char*> citations[] = {
       {"Alexander 1977", "ref_alexander1977"},         {"Andersen 1983", "ref_andersen1983"},
-      {"Goldenthal et al. 2007", "ref_goldenthal2007"},         {"Bogacki & Shampine 1989", "ref_bogacki1989"},
-      {"Cash & Karp 1990", "ref_cash1990"},            {"Crank & Nicolson 1947", "ref_crank1947"},
-      {"Dormand & Prince 1980", "ref_dormand1980"},    {"Fehlberg 1969", "ref_fehlberg1969"},
+      {"Bogacki & Shampine 1989", "ref_bogacki1989"},  {"Cash & Karp 1990", "ref_cash1990"},
+      {"Crank & Nicolson 1947", "ref_crank1947"},      {"Dormand & Prince 1980", "ref_dormand1980"},
+      {"Fehlberg 1969", "ref_fehlberg1969"},           {"Goldenthal et al. 2007", "ref_goldenthal2007"},
       {"Hosea & Shampine 1996", "ref_hosea1996"},      {"Kennedy & Carpenter 2016", "ref_kennedy2016"},
       {"Macklin et al. 2016", "ref_macklin2016"},      {"Macklin et al. 2019", "ref_macklin2019"},
       {"Tsitouras 2011", "ref_tsitouras2011"}};
