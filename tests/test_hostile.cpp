@@ -129,24 +129,9 @@ void expect_refused(const std::vector<Refused>& cases) {
 // independent list the folder-in-the-way cases are made from.
 const std::vector<std::string> run_files = {"final.dat", "energy.dat", "frames.dat", "run.txt"};
 
-std::vector<std::string> in_folders(const std::vector<std::string>& folders, const std::vector<std::string>& files) {
-  std::vector<std::string> names;
-  for (const std::string& folder : folders)
-    for (const std::string& file : files) names.push_back(folder + "/" + file);
-  return names;
-}
-
 std::vector<std::string> joined(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
-}
-
-const std::vector<std::string> report_cases = {"K50_D0", "K200_D0", "K200_D20"};
-
-std::vector<std::string> prefixed(const std::string& prefix) {
-  std::vector<std::string> folders;
-  for (const std::string& c : report_cases) folders.push_back(prefix + c);
-  return folders;
 }
 
 struct ProgramOutputs {
