@@ -52,13 +52,9 @@ class PlainFabric {
     return y;
   }
 
-  // y' = (v, f / m), pinned particles held still.
-  void rhs(const double* y, double* dydt) const {
-    const double* x = y;
-    const double* v = y + 3 * P_;
-    double* a = dydt + 3 * P_;
-    for (int c = 0; c < 3 * P_; ++c) dydt[c] = v[c], a[c] = 0;
-    for (int p = 0; p < P_; ++p) a[3 * p + 2] = -g_;
+  // a = f(x, v) / m, zero for the pinned particles.
+  void acceleration(const double* x, const double* v, double* a) const {
+    for (int p = 0; p < P_; ++p) a[3 * p] = 0, a[3 * p + 1] = 0, a[3 * p + 2] = -g_;
     for (const Spring& s : springs_) {
       double u[3], w = 0, l2 = 0;
       for (int k = 0; k < 3; ++k) u[k] = x[3 * s.p + k] - x[3 * s.q + k], l2 += u[k] * u[k];
@@ -69,7 +65,22 @@ class PlainFabric {
     }
     for (int p = 0; p < P_; ++p)
       if (pinned(p))
-        for (int k = 0; k < 3; ++k) dydt[3 * p + k] = 0, a[3 * p + k] = 0;
+        for (int k = 0; k < 3; ++k) a[3 * p + k] = 0;
+  }
+
+  // y' = (v, f / m), pinned particles held still.
+  void rhs(const double* y, double* dydt) const {
+    for (int p = 0; p < P_; ++p)
+      for (int k = 0; k < 3; ++k) dydt[3 * p + k] = pinned(p) ? 0.0 : y[3 * (P_ + p) + k];
+    acceleration(y, y + 3 * P_, dydt + 3 * P_);
+  }
+
+  // One symplectic Euler step in place, v += h a(x, v), then x += h v, with `a` as scratch of 3 P entries.
+  void symplectic_euler_step(double h, std::vector<double>& y, std::vector<double>& a) const {
+    double* x = y.data();
+    double* v = x + 3 * P_;
+    acceleration(x, v, a.data());
+    for (int c = 0; c < 3 * P_; ++c) v[c] += h * a[static_cast<std::size_t>(c)], x[c] += h * v[c];
   }
 
   // odeint's form of the right-hand side.

@@ -1,12 +1,12 @@
 // Chapter 10: inextensible cloth by projection. The curtain (20 x 20, K = 1e5 N/m, hung by one edge, released flat)
 // stepped by RATTLE and fast projection with the stiff springs held as constraints, against the spring model's
 // motion (Dormand-Prince at a tight tolerance), beside the programs a reader would write without the book: a plain
-// symplectic Euler loop and Boost.Odeint's RK4 on a plain force loop (projection_study.hpp). Each runs a ladder of
+// symplectic Euler loop and Boost.Odeint's RK4 on a plain force loop (plain_fabric.hpp). Each runs a ladder of
 // steps; the largest step reaching 1 cm and 1 mm at T is timed (thread CPU time, 5 runs) in the same run.
 // The book's own symplectic Euler and RK4 run beside them. Writes projection_runs.md (every run),
 // projection_ratio.md (the comparison) and projection_model.md (the spring model's stretch and the inextensible
 // model's distance from it) to --out.
-#include "projection_study.hpp"
+#include "plain_fabric.hpp"
 #include "study.hpp"
 
 #include "analysis/reference_trajectory.hpp"
@@ -67,14 +67,14 @@ Vector book_run(const Scene& scene, const std::string& method, long long n) {
 }
 // [book_run]
 
-Vector plain_symplectic_euler(const ch10::PlainCurtain& c, long long n) {
+Vector plain_symplectic_euler(const ch10::PlainFabric& c, long long n) {
   std::vector<double> y = c.initial_state(), a(static_cast<std::size_t>(3 * c.particles()));
   const double h = T / static_cast<double>(n);
   for (long long k = 0; k < n; ++k) c.symplectic_euler_step(h, y, a);
   return Eigen::Map<const Vector>(y.data(), 3 * c.particles());
 }
 
-Vector odeint_rk4(const ch10::PlainCurtain& c, long long n) {
+Vector odeint_rk4(const ch10::PlainFabric& c, long long n) {
   std::vector<double> y = c.initial_state();
   boost::numeric::odeint::runge_kutta4<std::vector<double>> rk4;
   const double h = T / static_cast<double>(n);
@@ -131,7 +131,8 @@ int main(int argc, char** argv) {
     std::printf("reference: dopri5 at %g, %lld steps; motion at T %.3f m\n", tolerance, reference.steps, motion);
 
     // [contenders]
-    const ch10::PlainCurtain plain(p.grid.N, p.grid.d, p.stiffness, p.damping, p.mass, p.gravity);
+    const ch10::PlainFabric plain(p.grid.M, p.grid.N, p.grid.d, p.stiffness, p.damping, p.mass, p.gravity,
+                                  p.initial_velocity_z, /*edge=*/true);
     const double h_se = 4.4e-5, h_rk4 = 6.4e-5;  // just inside each explicit method's stable step here
     std::vector<Contender> contenders = {
         {"RATTLE", true, ladder(T / 600, 0.5, quick ? 2 : 4), [&](long long n) { return book_run(scene, "rattle", n); }},
