@@ -78,7 +78,7 @@ Vector odeint_rk4(const ch10::PlainFabric& c, long long n) {
   std::vector<double> y = c.initial_state();
   boost::numeric::odeint::runge_kutta4<std::vector<double>> rk4;
   const double h = T / static_cast<double>(n);
-  for (long long k = 0; k < n; ++k) rk4.do_step(c, y, static_cast<double>(k) * h, h);
+  for (long long k = 0; k < n; ++k) rk4.do_step(std::cref(c), y, static_cast<double>(k) * h, h);
   return Eigen::Map<const Vector>(y.data(), 3 * c.particles());
 }
 
