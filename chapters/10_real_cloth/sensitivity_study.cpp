@@ -88,7 +88,7 @@ void growth_table(const std::string& out, const std::string& command, const Scen
     throw_if_interrupted();
     runs.push_back({epsilon, distances(perturbed, truth)});
   }
-  MarkdownTable t(time_header("initial perturbation ε [m]"), "r" + std::string(frames / frames_per_column, 'r'));
+  MarkdownTable t(time_header("initial perturbation ε [m]"), std::string(frames / frames_per_column + 1, 'r'));
   const std::vector<double> floor = distances(looser, truth);
   std::vector<std::string> row = {format("the reference at %.0e against %.0e", 100 * tolerance, tolerance)};
   for (int k = frames_per_column; k <= frames; k += frames_per_column) row.push_back(format("%.1e m", floor[k]));
@@ -152,7 +152,7 @@ MethodRun method_run(const Scene& scene, ForceField& field, const ReferenceTraje
 // first-order error, 16 for a fourth-order one, while the error is in the linear regime.
 void method_table(const std::string& out, const std::string& command, const Scene& scene, ForceField& field,
                   const ReferenceTrajectory& truth, std::string& dat) {
-  MarkdownTable t(time_header("method, h [s]"), "l" + std::string(frames / frames_per_column, 'r'));
+  MarkdownTable t(time_header("method, h [s]"), std::string("l").append(frames / frames_per_column, 'r'));
   double shortest = std::numeric_limits<double>::infinity();
   dat += "# methods: method, steps per frame, t, largest distance from the reference\n";
   for (const std::string method : {"symplectic_euler", "rk4"}) {
