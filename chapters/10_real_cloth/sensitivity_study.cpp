@@ -175,8 +175,9 @@ void method_table(const std::string& out, const std::string& command, const Scen
   }
   write_table_fragment(out + "/sensitivity_methods.md", t, command);
   write_text_fragment(out + "/sensitivity_guard.md",
-                      format("%.4f of its rest length, against the guard's %.0e", shortest,
-                             degenerate_length_fraction));
+                      format("Over every step of the six runs above the shortest spring was %.4f of its rest length, "
+                             "against the guard's %.0e.\n",
+                             shortest, degenerate_length_fraction));
 }
 
 }  // namespace
