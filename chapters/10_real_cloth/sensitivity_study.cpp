@@ -88,16 +88,16 @@ void growth_table(const std::string& out, const std::string& command, const Scen
     throw_if_interrupted();
     runs.push_back({epsilon, distances(perturbed, truth)});
   }
-  MarkdownTable t(time_header("initial perturbation ε [m]"), std::string(frames / frames_per_column + 1, 'r'));
+  MarkdownTable t(time_header("ε [m]: growth (distance [m])"), std::string(frames / frames_per_column + 1, 'r'));
   const std::vector<double> floor = distances(looser, truth);
   std::vector<std::string> row = {format("the reference at %.0e against %.0e", 100 * tolerance, tolerance)};
-  for (int k = frames_per_column; k <= frames; k += frames_per_column) row.push_back(format("%.1e m", floor[k]));
+  for (int k = frames_per_column; k <= frames; k += frames_per_column) row.push_back(format("%.1e", floor[k]));
   t.add_row(row);
   dat += "# growth: epsilon, then t and largest distance / epsilon at every frame\n";
   for (const Growth& g : runs) {
     row = {format("%.0e", g.epsilon)};
     for (int k = frames_per_column; k <= frames; k += frames_per_column)
-      row.push_back(format("%.2g (%.1e m)", g.distance[k] / g.epsilon, g.distance[k]));
+      row.push_back(format("%.2g (%.1e)", g.distance[k] / g.epsilon, g.distance[k]));
     t.add_row(row);
     for (int k = 0; k <= frames; ++k)
       dat += format("%.0e %.6f %.6e\n", g.epsilon, k * T / frames, g.distance[k] / g.epsilon);
@@ -105,13 +105,13 @@ void growth_table(const std::string& out, const std::string& command, const Scen
   // The largest distance still in the linear regime: the largest perturbation grown to within 20 % of the
   // smallest epsilon's growth factor (the smallest taken as linear; the reference row says how far above its floor
   // it lies).
-  row = {"largest distance with growth within 20 % of the smallest ε's"};
+  row = {"largest distance growing within 20 % of the smallest ε's factor"};
   for (int k = frames_per_column; k <= frames; k += frames_per_column) {
     const double linear = runs.front().distance[k] / runs.front().epsilon;
     double largest = 0;
     for (const Growth& g : runs)
       if (std::abs(g.distance[k] / g.epsilon / linear - 1) <= 0.2) largest = std::max(largest, g.distance[k]);
-    row.push_back(format("%.1e m", largest));
+    row.push_back(format("%.1e", largest));
   }
   t.add_row(row);
   write_table_fragment(out + "/sensitivity_growth.md", t, command);
