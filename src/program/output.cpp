@@ -6,6 +6,7 @@
 #include "base/input_error.hpp"
 #include "base/text.hpp"
 #include "program/command_line.hpp"
+#include "program/output_spec.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -285,6 +286,12 @@ void write_key_values(const std::string& path, const std::vector<std::pair<std::
   OutputFile f(path);
   for (const auto& [key, value] : entries) std::fprintf(f.get(), "%s = %s\n", key.c_str(), value.c_str());
   f.commit();
+}
+
+// Declared in program/output_spec.hpp; defined here, beside prepare_outputs, so that the declarations themselves
+// (listed by `--list-outputs`, also in the WebAssembly build, which writes no files) need no file system.
+void prepare_declared_outputs(const std::string& dir, const OutputList& written, const OutputList& others) {
+  prepare_outputs(dir, output_names(written), output_names(others));
 }
 
 }  // namespace cloth

@@ -1,8 +1,6 @@
 // Each program's declared outputs (see output_spec.hpp).
 #include "program/output_spec.hpp"
 
-#include "program/output.hpp"
-
 #include <algorithm>
 #include <utility>
 
@@ -46,10 +44,6 @@ std::string output_listing(const OutputList& list) {
   std::string text;
   for (const OutputSpec& file : list) text += file.name + "\t" + output_kind_name(file.kind) + "\t" + file.holds + "\n";
   return text;
-}
-
-void prepare_declared_outputs(const std::string& dir, const OutputList& written, const OutputList& others) {
-  prepare_outputs(dir, output_names(written), output_names(others));
 }
 
 }  // namespace cloth
