@@ -30,21 +30,21 @@ Outcome run_cloth(const cloth::SceneParams& params, cloth::RunSettings run, cons
 cloth::NewtonSettings full_newton(cloth::NewtonSettings newton, cloth::LinearSolverKind solver,
                                   cloth::StiffnessTreatment treatment);
 
-/// The report's three (K, D), each run with full Newton and with one iteration, in subfolders of --out.
+/// The report's three (K, D), each run with full Newton and with one iteration, in subfolders of `--out`.
 std::string report_folder(const char* variant, const cloth::ReportCase& c);
 
 /// The single runs behind the page's other measurements, each in a subfolder: the definite matrix's failure, the
 /// stiff cloth at a large step, and conjugate gradients.
 inline constexpr const char* measured_run_folders[] = {"definite_K50_D0", "stiff_K100000_h0.1", "cg_K50_D0"};
 
-/// What --report-runs writes into --out, declared once (program/output_spec.hpp).
+/// What `--report-runs` writes into `--out`, declared once (program/output_spec.hpp).
 cloth::OutputList report_outputs();
 
-/// What every study of --report-runs reads.
+/// What every study of `--report-runs` reads.
 struct Study {
   const cloth::Options& opt;    ///< the scene and the run the command line describes
   cloth::NewtonSettings newton;  ///< the command line's Newton settings
-  std::string dir;              ///< --out
+  std::string dir;              ///< `--out`
   std::string program;          ///< the program's name, for the runs' summaries
   std::string command;          ///< the reader's command line, under every fragment
 };

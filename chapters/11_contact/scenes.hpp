@@ -26,7 +26,7 @@ struct ContactFlags {
 /// replace the report's): pairs of flag and value.
 [[nodiscard]] std::vector<std::pair<const char*, const char*>> scene_defaults(SceneKind kind);
 
-/// The scene's thickness when --thickness is not given.
+/// The scene's thickness when `--thickness` is not given.
 [[nodiscard]] double default_thickness(SceneKind kind);
 
 /// Places the cloth of `params` for the scene (orientation and origin) and returns the obstacles, friction and

@@ -57,9 +57,9 @@ class CommandLine {
   /// A chapter flag without a value.
   void add_switch(std::string flag, std::string help, std::function<void()> set);
 
-  /// Declares the files a run writes into --out (program/output_spec.hpp), as a function of the parsed flags, and
+  /// Declares the files a run writes into `--out` (program/output_spec.hpp), as a function of the parsed flags, and
   /// adds `--list-outputs`: parse then prints them (output_listing) instead of running, and ends as for `--help`.
-  /// The program prepares --out from the same function, so the list the build checks is the one the run uses.
+  /// The program prepares `--out` from the same function, so the list the build checks is the one the run uses.
   void declare_outputs(std::function<OutputList(const Options&)> outputs);
 
   /// Parses argv. Throws InputError naming the flag on any bad input (a flag given twice included),

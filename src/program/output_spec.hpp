@@ -22,7 +22,7 @@ enum class OutputKind {
 /// The kind's name as `--list-outputs` prints it: "fragment", "figure_input" or "data".
 const char* output_kind_name(OutputKind kind);
 
-/// One file a program writes: its path relative to --out ("report_runs.md", "full_K50_D0/run.txt"), its kind, and
+/// One file a program writes: its path relative to `--out` ("report_runs.md", "full_K50_D0/run.txt"), its kind, and
 /// what it holds, in a few words.
 struct OutputSpec {
   // All three, always: a list of bare names ({"a.md", "b.dat"}) stays a list of names, not of declarations.
