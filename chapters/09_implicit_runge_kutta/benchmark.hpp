@@ -22,12 +22,14 @@ struct Outcome {
   double t = 0, failed_t = 0;  ///< the time reached; the time the step that failed was heading for
 };
 
-/// What a SUNDIALS run integrates with: `solver` ("cvode-bdf", "arkode-dirk", "arkode-backward-euler"), the
-/// horizon, the tolerances, the fixed step of backward Euler, CVODE's largest order.
+/// What a SUNDIALS run integrates with: `solver` ("cvode-bdf", "arkode-esdirk32", "arkode-esdirk43",
+/// "arkode-dirk", "arkode-backward-euler"), the horizon, the tolerances, the fixed step of backward Euler, CVODE's
+/// largest order, and the Jacobian's df/dx (exact, or as the book's Newton matrix of that treatment holds it).
 struct SundialsSettings {
   std::string solver;
   double T = 0, rtol = 1e-6, atol = 1e-6, h = 0;
   int max_order = 5;
+  cloth::StiffnessTreatment treatment = cloth::StiffnessTreatment::exact;
 };
 
 /// One SUNDIALS run of the scene from its initial state: the outcome, and the final free positions and velocities
@@ -61,8 +63,10 @@ Timed fixed_step_run(cloth::ForceField& field, const std::string& method, double
 /// A controlled run of an embedded pair at the error tolerance `tol`, with the chapter's defaults for one.
 Timed controlled_run(cloth::ForceField& field, const std::string& method, double tol, const Timing& timing);
 
-/// One CVODE run (BDF up to `max_order`, KLU, the analytic Jacobian) at rtol = atol = tol: best of the repeats.
-Timed cvode_run(cloth::ForceField& field, int max_order, double tol, const Timing& timing);
+/// One SUNDIALS run of `settings` (its T the timing's) at rtol = atol = tol, KLU on the analytic Jacobian: best of
+/// the repeats, named by `who`.
+Timed sundials_timed_run(cloth::ForceField& field, SundialsSettings settings, double tol, const std::string& who,
+                         const Timing& timing);
 
 /// The comparison on the stiff cloth (5000, 20): stiff_runs.dat, stiff_comparison.md, stiff_work.md and
 /// stiff_reference.md in `dir`.

@@ -1,5 +1,6 @@
 // The cloth as SUNDIALS sees it: the first-order system y = (x, v), y' = (v, f(x, v) / m), with its analytic sparse
-// Jacobian in compressed columns, both callbacks counting their evaluations and honouring a stop request.
+// Jacobian in compressed columns (exact, or with df/dx as the book's Newton matrix treats it), both callbacks
+// counting their evaluations and honouring a stop request.
 #pragma once
 
 #include "model/force_field.hpp"
@@ -11,18 +12,29 @@
 namespace ch09 {
 
 // y = (x, v) for SUNDIALS: y' = (v, f(x, v) / m), and its Jacobian [[0, I], [df/dx / m, df/dv / m]] in
-// compressed columns with every diagonal entry stored (SUNDIALS forms I - gamma J in place).
+// compressed columns with every diagonal entry stored (SUNDIALS forms I - gamma J in place). With a treatment other
+// than exact, df/dx is the one the book's Newton matrix of that treatment holds (the definite one: Choi & Ko 2002,
+// compressed springs without their transverse term), read off A = M - df/dv - df/dx at h = 1.
 struct ClothSystem {
   cloth::ForceField& field;
   int n;  // free coordinates
   double mass;
-  cloth::SparseMatrix dfdx, dfdv;
+  cloth::StiffnessTreatment treatment;
+  cloth::SparseMatrix dfdx, dfdv, newton;
   cloth::Vector f;
   long long rhs_evaluations = 0, jacobian_evaluations = 0;
 
-  explicit ClothSystem(cloth::ForceField& fld)
-      : field(fld), n(fld.dof_count()), mass(fld.scene().params().mass), dfdx(fld.pattern()), dfdv(fld.pattern()),
-        f(fld.dof_count()) {}
+  explicit ClothSystem(cloth::ForceField& fld, cloth::StiffnessTreatment treat = cloth::StiffnessTreatment::exact)
+      : field(fld), n(fld.dof_count()), mass(fld.scene().params().mass), treatment(treat), dfdx(fld.pattern()),
+        dfdv(fld.pattern()), newton(fld.pattern()), f(fld.dof_count()) {}
+
+  // df/dx = M - df/dv - A(h = 1), entry by entry: the three matrices share the pattern, and nothing is allocated.
+  void treated_dfdx(const Eigen::Map<const cloth::Vector>& x, const Eigen::Map<const cloth::Vector>& v) {
+    field.newton_matrix(x, v, 1.0, treatment, newton);
+    const Eigen::Index nonzeros = dfdx.nonZeros();
+    for (Eigen::Index k = 0; k < nonzeros; ++k) dfdx.valuePtr()[k] = -dfdv.valuePtr()[k] - newton.valuePtr()[k];
+    for (int i = 0; i < n; ++i) dfdx.coeffRef(i, i) += mass;
+  }
 
   [[nodiscard]] sunindextype nonzeros() const { return 2 * n + 2 * static_cast<sunindextype>(dfdx.nonZeros()); }
 
@@ -46,6 +58,7 @@ struct ClothSystem {
     auto& s = *static_cast<ClothSystem*>(data);
     const Eigen::Map<const cloth::Vector> x(N_VGetArrayPointer(y), s.n), v(N_VGetArrayPointer(y) + s.n, s.n);
     s.field.jacobians(x, v, s.dfdx, s.dfdv);
+    if (s.treatment != cloth::StiffnessTreatment::exact) s.treated_dfdx(x, v);
     ++s.jacobian_evaluations;
     sunindextype* start = SUNSparseMatrix_IndexPointers(J);
     sunindextype* row = SUNSparseMatrix_IndexValues(J);

@@ -42,7 +42,7 @@ int single_run(const Options& opt, const SundialsSettings& settings, bool compar
                   {"rtol", format_number(settings.rtol, 10)},
                   {"atol", format_number(settings.atol, 10)},
                   {"linear_solver", "klu"},
-                  {"jacobian", "analytic"},
+                  {"jacobian", stiffness_treatments().name(settings.treatment)},
                   {"steps", std::to_string(out.steps)},
                   {"t_reached", format_number(out.t, 10)},
                   {"convergence_failures", std::to_string(out.convergence_failures)},

@@ -70,8 +70,16 @@ int integrate_cvode(ClothSystem& system, const SundialsSettings& s, N_Vector y, 
   return flag;
 }
 
-// ARKODE: its default third-order ESDIRK of Kennedy & Carpenter under step control, or the one-stage backward
-// Euler table at the fixed step h; KLU on the analytic Jacobian, to T. Returns ARKStepEvolve's flag.
+// ARKODE's table for a solver name: Kennedy & Carpenter's ESDIRK3(2)4L[2]SA and ESDIRK4(3)6L[2]SA (the book's
+// esdirk32 and esdirk43, entry for entry), or ARKStep's default implicit table, ARK3(2)4L[2]SA's ESDIRK.
+ARKODE_DIRKTableID arkode_table(const std::string& solver) {
+  if (solver == "arkode-esdirk32") return ARKODE_ESDIRK324L2SA_4_2_3;
+  if (solver == "arkode-esdirk43") return ARKODE_ESDIRK436L2SA_6_3_4;
+  return ARKODE_ARK324L2SA_DIRK_4_2_3;
+}
+
+// ARKODE under its own step control with the solver's table, or the one-stage backward Euler table at the fixed
+// step h; KLU on the analytic Jacobian, to T. Returns ARKStepEvolve's flag.
 int integrate_arkode(ClothSystem& system, const SundialsSettings& s, N_Vector y, SUNMatrix A, SUNLinearSolver klu,
                      SUNContext context, Outcome& out) {
   void* mem = allocated(ARKStepCreate(nullptr, ClothSystem::rhs, 0.0, y, context));
@@ -97,8 +105,14 @@ int integrate_arkode(ClothSystem& system, const SundialsSettings& s, N_Vector y,
     // solution, not its interpolant (which halves the step's change: the difference measured in Chapter 9).
     flag = arkode_fixed_steps_to(mem, s.T, s.h, y, t);
   } else {
-    check(ARKStepSetTableNum(mem, ARKODE_ARK324L2SA_DIRK_4_2_3, ARKODE_ERK_NONE), "ARKStepSetTableNum");
-    flag = ARKStepEvolve(mem, s.T, y, &t, ARK_NORMAL);
+    check(ARKStepSetTableNum(mem, arkode_table(s.solver), ARKODE_ERK_NONE), "ARKStepSetTableNum");
+    // T as a stop time, and one step per call: the last step ends on T, as the book's driver's does, and y is
+    // then read as that step's own solution (ARKODE's current state), not as its interpolant evaluated at T.
+    check(ARKStepSetStopTime(mem, s.T), "ARKStepSetStopTime");
+    do flag = ARKStepEvolve(mem, s.T, y, &t, ARK_ONE_STEP);
+    while (flag == ARK_SUCCESS && t < s.T);
+    N_Vector state = nullptr;
+    if (flag >= 0 && ARKStepGetCurrentState(mem, &state) == ARK_SUCCESS) N_VScale(1.0, state, y);
   }
   out.t = t;
   read_counters(mem, {ARKStepGetNumSteps, ARKStepGetNumNonlinSolvConvFails, ARKStepGetNumNonlinSolvIters,
@@ -113,7 +127,7 @@ int integrate_arkode(ClothSystem& system, const SundialsSettings& s, N_Vector y,
 }  // namespace
 
 Outcome sundials_run(const SundialsSettings& settings, ForceField& field, Vector& x, Vector& v) {
-  ClothSystem system(field);
+  ClothSystem system(field, settings.treatment);
   SUNContext context = nullptr;
   check(SUNContext_Create(nullptr, &context), "SUNContext_Create");
   N_Vector y = N_VNew_Serial(2 * system.n, context);

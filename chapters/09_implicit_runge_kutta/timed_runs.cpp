@@ -1,5 +1,5 @@
 // The timed runs of the comparisons, one of each kind: the book's methods at a fixed step or under step control,
-// and CVODE at a tolerance, each the best of a few repeats, with its error at T against RK4 and its work.
+// and SUNDIALS at a tolerance, each the best of a few repeats, with its error at T against RK4 and its work.
 #include "benchmark.hpp"
 
 #include "analysis/trajectory_measures.hpp"
@@ -92,11 +92,11 @@ Timed controlled_run(ForceField& field, const std::string& method, double tol, c
   return t;
 }
 
-Timed cvode_run(ForceField& field, int max_order, double tol, const Timing& timing) {
-  Timed t{max_order < 5 ? "CVODE BDF, order <= " + std::to_string(max_order) : std::string("CVODE BDF"),
-          "rtol = atol = " + format_number(tol, 3)};
-  SundialsSettings settings{"cvode-bdf", timing.T, tol, tol};
-  settings.max_order = max_order;
+Timed sundials_timed_run(ForceField& field, SundialsSettings settings, double tol, const std::string& who,
+                         const Timing& timing) {
+  Timed t{who, "rtol = atol = " + format_number(tol, 3)};
+  settings.T = timing.T;
+  settings.rtol = settings.atol = tol;
   for (int k = 0; k < timing.repeats; ++k) {
     Vector x, v;
     const Outcome out = sundials_run(settings, field, x, v);
