@@ -37,10 +37,14 @@ void NewtonFlags::apply_defaults(const Defaults& defaults) {
   if (defaults.line_search && !given("--line-search")) newton_.line_search = *defaults.line_search;
 }
 
-void NewtonFlags::add_to(CommandLine& cli) {
+void NewtonFlags::add_to(CommandLine& cli, NewtonVariant default_variant) {
+  newton_.variant = default_variant;
+  const bool full = default_variant == NewtonVariant::full, modified = default_variant == NewtonVariant::modified;
   cli.add_value("--newton", newton_variants().accepted("|"),
-                "full Newton (default), modified (a factorization kept while it converges fast, Chapter 9), or one: "
-                "Baraff & Witkin's single linearised step",
+                std::string(full ? "full Newton (default)" : "full Newton") +
+                    ", modified (a factorization kept while it converges fast, Chapter 9" + (modified ? "; default" : "") +
+                    "), or one: Baraff & Witkin's single linearised step" +
+                    (!full && !modified ? " (default)" : ""),
                 [this](const std::string& s) {
                   newton_.variant = newton_variants().parse(s);
                   note("--newton");

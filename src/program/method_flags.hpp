@@ -26,8 +26,8 @@ StiffnessTreatment default_treatment(LinearSolverKind solver, bool nonsymmetric)
 class NewtonFlags {
  public:
   /// Adds `--newton`, `--linear-solver`, `--newton-tol`, `--newton-max-iter`, `--line-search` and `--jacobian`
-  /// to `cli`.
-  void add_to(CommandLine& cli);
+  /// to `cli`; without `--newton` the program runs `default_variant` (Chapter 9's fixed steps: modified).
+  void add_to(CommandLine& cli, NewtonVariant default_variant = NewtonVariant::full);
 
   /// The settings the flags chose, the Newton matrix's treatment by default_treatment() unless `--jacobian` chose
   /// it. Throws InputError naming the flags when they contradict each other (`--newton one` with another
