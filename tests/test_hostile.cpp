@@ -553,7 +553,8 @@ TEST_CASE("hostile adaptive-step flags: tolerances, the first step, the controll
 TEST_CASE("a folder in the way of any output of ch05-ch07 and ch09, in any mode, is bad input: status 2, nothing written") {
   const std::vector<Refused> cases = in_the_way_cases(later_outputs());
   // ch05 with its sweep declares its run folders last, so it also gets the case of a file in place of a subfolder.
-  CHECK(cases.size() == 247 + 4 * cloth::builtin_implicit_tableaus().size());
+  // ch09's declaration includes stiffness.md, which the hand-written list before it left out.
+  CHECK(cases.size() == 248 + 4 * cloth::builtin_implicit_tableaus().size());
   expect_refused(cases_to_run(cases));
 }
 
