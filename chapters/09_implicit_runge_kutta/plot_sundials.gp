@@ -11,11 +11,10 @@ set xlabel "max |x - x_{ref}| at T [m]"
 set ylabel "processor time [s]"
 set logscale xy
 set format x "10^{%T}"
-set key outside bottom center vertical maxrows 3
-set size ratio 0.55
+set key bottom left box opaque font ",11"
 plot data.'/stiff_runs.dat' index 0 using 1:2 with points pt 6 ps 1.2 lc rgb "#444444" title "CVODE BDF + KLU", \
      data.'/stiff_runs.dat' index 3 using 1:2 with steps lw 2 lc rgb "#444444" title "CVODE, fastest reaching each level", \
-     data.'/stiff_runs.dat' index 1 using 1:2 with points pt 4 ps 1.2 lc rgb "#2ca02c" title "ARKODE ESDIRK3(2)4L[2]SA, ESDIRK4(3)6L[2]SA + KLU", \
+     data.'/stiff_runs.dat' index 1 using 1:2 with points pt 4 ps 1.2 lc rgb "#2ca02c" title "ARKODE ESDIRK3(2)4L[2]SA and 4(3)6L[2]SA + KLU", \
      data.'/stiff_runs.dat' index 4 using 1:2 with steps lw 2 dt 2 lc rgb "#2ca02c" title "ARKODE, fastest reaching each level", \
-     data.'/stiff_runs.dat' index 2 using 1:2 with points pt 9 ps 1.2 lc rgb "#9467bd" title "the book: ESDIRK pairs, TR-BDF2, SDIRKs", \
+     data.'/stiff_runs.dat' index 2 using 1:2 with points pt 9 ps 1.2 lc rgb "#9467bd" title "the book: ESDIRK pairs (and, full run, TR-BDF2, SDIRKs)", \
      data.'/stiff_runs.dat' index 5 using 1:2 with steps lw 2 lc rgb "#9467bd" title "the book, fastest reaching each level"
