@@ -2,6 +2,8 @@
 // analytic Jacobian), one timed run of either side for the comparisons, and the comparisons themselves.
 #pragma once
 
+#include "rk4_reference.hpp"
+
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
 #include "program/command_line.hpp"
@@ -35,9 +37,6 @@ struct SundialsSettings {
 /// One SUNDIALS run of the scene from its initial state: the outcome, and the final free positions and velocities
 /// in x and v.
 Outcome sundials_run(const SundialsSettings& settings, cloth::ForceField& field, cloth::Vector& x, cloth::Vector& v);
-
-/// The free particles' positions at T by RK4 at h_ref: explicit, sharing no code with either side.
-cloth::Vector rk4_positions(cloth::ForceField& field, double T, double h_ref);
 
 /// One run of the comparison: who ran, with what, the error it reached and the processor seconds it took.
 struct Timed {

@@ -11,23 +11,10 @@
 #include "program/timing.hpp"
 
 #include <algorithm>
-#include <stdexcept>
 
 using namespace cloth;
 
 namespace ch09 {
-
-Vector rk4_positions(ForceField& field, double T, double h_ref) {
-  const auto rk4 = make_stepper("rk4", field);
-  RunSettings run;
-  run.dt = h_ref;
-  run.t_end = T;
-  run.stop = &interrupt_flag();
-  const RunResult r = simulate(*rk4, run, false);
-  throw_if_interrupted();
-  if (r.status != RunStatus::ok) throw std::runtime_error("the RK4 reference failed: " + r.message);
-  return r.x;
-}
 
 Timed fixed_step_run(ForceField& field, const std::string& method, double h, double newton_tol,
                      NewtonVariant variant, const Timing& timing, Vector* x_out) {

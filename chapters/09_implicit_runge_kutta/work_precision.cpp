@@ -1,8 +1,8 @@
 // The accuracy studies' machinery: the reference solution (RK4 at a small step, sharing no code with the implicit
 // methods) and the runs of each method and Newton variant at a ladder of fixed steps, timed, with their work.
+#include "rk4_reference.hpp"
 #include "studies.hpp"
 
-#include "base/input_error.hpp"
 #include "program/interrupt.hpp"
 #include "program/output.hpp"
 #include "program/timing.hpp"
@@ -31,15 +31,7 @@ std::vector<double> study_steps(bool quick) {
 Vector reference_positions(const SceneParams& p, double T, double h_ref) {
   const Scene scene(p);
   ForceField field(scene);
-  const auto rk4 = make_stepper("rk4", field);
-  RunSettings run;
-  run.dt = h_ref;
-  run.t_end = T;
-  run.stop = &interrupt_flag();
-  const RunResult r = simulate(*rk4, run, false);
-  throw_if_interrupted();
-  if (r.status != RunStatus::ok) throw InputError("the RK4 reference failed: " + r.message);
-  return r.x;
+  return rk4_positions(field, T, h_ref);
 }
 
 // [work_precision]
