@@ -10,10 +10,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <fstream>
 #include <random>
-#include <sstream>
-#include <string>
 
 using namespace cloth;
 using cloth::testing::random_state;
@@ -162,17 +159,21 @@ TEST_CASE("bending in XPBD and local/global: a bent sheet relaxes as implicit Eu
   // Both take the bending force explicitly, at the step's start (integrators/xpbd.cpp, local_global.cpp): each step
   // then differs from implicit Euler's by O(h^2), so at a fixed time T the gap to implicit Euler at the same h is
   // O(h) and halves with h, provided h is inside the explicit bending term's stability limit. The sheet of the
-  // order test, released bent and damped, without gravity: bending alone drives the motion.
+  // order test, damped, without gravity, released rolled onto a cylinder of radius 0.15 m about its pinned edge:
+  // an isometry but for the chords, so bending holds a fifth of the energy and drives the motion (the springs' share
+  // is their chords' compression).
   SceneParams p = bent_sheet(BendingModel::hinge, 0.01);
   p.gravity = 0;
   p.initial_velocity_z = 0;
   const Scene scene(p);
   ForceField field(scene);
   Vector x0 = scene.initial_positions();
+  const double R = 0.15, edge_y = (scene.grid().N - 1) * scene.grid().d;
   for (int slot = 0; slot < scene.free_count(); ++slot) {
     const int j = scene.particle_of_slot(slot) % scene.grid().N;
-    const double from_edge = (scene.grid().N - 1 - j) * scene.grid().d;
-    x0[3 * slot + 2] = 2.0 * from_edge * from_edge;
+    const double s = edge_y - j * scene.grid().d;  // arc length from the pinned edge
+    x0[3 * slot + 1] = edge_y - R * std::sin(s / R);
+    x0[3 * slot + 2] = R * (1 - std::cos(s / R));
   }
   const Vector v0 = Vector::Zero(scene.dof_count());
   const double E0 = field.energy(x0, v0).total(), T = 0.1;
@@ -191,7 +192,7 @@ TEST_CASE("bending in XPBD and local/global: a bent sheet relaxes as implicit Eu
     CAPTURE(name);
     double gap[2] = {0, 0}, motion = 0;
     for (int halving = 0; halving < 2; ++halving) {
-      const double h = 2e-3 / (1 << halving);
+      const double h = 4e-4 / (1 << halving);
       double E_reference = 0, E = 0;
       const Vector reference = run("implicit_euler", h, E_reference);
       const Vector x = run(name, h, E);
@@ -203,19 +204,22 @@ TEST_CASE("bending in XPBD and local/global: a bent sheet relaxes as implicit Eu
       CHECK(std::abs(E - E_reference) <= 0.1 * E0);
     }
     INFO("gaps " << gap[0] << ", " << gap[1] << " m against a motion of " << motion << " m");
-    CHECK(motion > 1e-2);                // bending moved the sheet by a good part of its 2 cm lift
-    CHECK(gap[1] <= 0.05 * motion);      // close to implicit Euler's sheet
+    CHECK(motion > 1e-2);                // the sheet moved (by 2 cm): the gaps are small against something
+    CHECK(gap[1] <= 0.01 * motion);      // close to implicit Euler's sheet
     CHECK(gap[0] / gap[1] > 1.6);        // and closer as h halves: first order
     CHECK(gap[0] / gap[1] < 2.5);
   }
 }
 
-TEST_CASE("bending in the curtain, exact Jacobian: a zero pivot of LDL^T is met by the definite matrix, and counted") {
-  // Chapter 12's curtain with the quadratic bending term (B = 5e-6 N m) after 66 steps of implicit Euler at
-  // h = 0.01 s (tests/data/ch12_bending: final.dat of ch10_cloth at t = 0.66 s, every digit). At the next step the
-  // exact Newton matrix M + h^2 H has a singular pivot block: the springs compressed in the folds make H
-  // indefinite (their transverse stiffness K (1 - L0/l) is negative), and at this state one eigenvalue of
-  // M + h^2 H crosses zero. The quadratic term's own Hessian is constant and semi-definite: it is not the cause.
+TEST_CASE("bending in the curtain, exact Newton matrix: the zero pivot at step 67 is met by the definite matrix") {
+  // Chapter 12's curtain (20 x 20, d = 5 cm, K = 1e5 N/m, D = 0.01, top edge pinned, released flat) with the
+  // quadratic term of B = 5e-6 N m, by implicit Euler at h = 0.01 s with the exact Newton matrix and LDL^T. At
+  // step 67 a pivot block of M + h^2 H is singular: the springs compressed in the folds make H indefinite (their
+  // transverse stiffness K (1 - L0/l) is negative); the quadratic term's own Hessian is constant and semi-definite.
+  // Without the fallback that step failed (`ch10_cloth --grid 20x20 --spacing 0.05 --mass 6.25e-4 --K 1e5
+  // --damping 0.01 --pins edge --v0 0 --springs structural,shear --bending quadratic --bending-rigidity 5e-6
+  // --method implicit_euler --dt 0.01 --jacobian exact --linear-solver ldlt` stopped there, exit 3); now the
+  // iteration takes the definite matrix, counts it, and every step converges.
   SceneParams p;
   p.grid = Grid{20, 20, 0.05};
   p.mass = 6.25e-4;
@@ -227,49 +231,20 @@ TEST_CASE("bending in the curtain, exact Jacobian: a zero pivot of LDL^T is met 
   p.bending = BendingModel::quadratic;
   p.bending_rigidity = 5e-6;
   const Scene scene(p);
-  std::ifstream in(std::string(CLOTH_SOURCE_DIR) + "/tests/data/ch12_bending/drape_quadratic_step66.dat");
-  REQUIRE(in);
-  Vector x0 = scene.initial_positions(), v0 = scene.initial_velocities();
-  std::string line;
-  int read = 0;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    int i = 0, j = 0;
-    double q[6];
-    fields >> i >> j >> q[0] >> q[1] >> q[2] >> q[3] >> q[4] >> q[5];
-    REQUIRE(fields);
-    ++read;
-    const int s = scene.slot(scene.grid().particle(i, j));
-    if (s >= scene.free_count()) continue;
-    for (int c = 0; c < 3; ++c) {
-      x0[3 * s + c] = q[c];
-      v0[3 * s + c] = q[3 + c];
-    }
-  }
-  REQUIRE(read == 400);
-  const double h = 0.01;
-  const auto step = [&](StiffnessTreatment treatment, Vector& x, Vector& v) {
-    ForceField field(scene);
-    MethodSettings settings;
-    settings.newton.treatment = treatment;
-    settings.newton.solver = LinearSolverKind::ldlt;
-    settings.newton.tolerance = 1e-10;
-    const auto stepper = make_stepper("implicit_euler", field, settings);
-    x = x0;
-    v = v0;
-    const bool ok = stepper->step(h, x, v);
+  ForceField field(scene);
+  MethodSettings settings;
+  settings.newton.treatment = StiffnessTreatment::exact;
+  settings.newton.solver = LinearSolverKind::ldlt;
+  const auto stepper = make_stepper("implicit_euler", field, settings);
+  Vector x = scene.initial_positions(), v = scene.initial_velocities();
+  long long before = 0;
+  for (int step = 1; step <= 68; ++step) {
+    CAPTURE(step);
+    const bool ok = stepper->step(0.01, x, v);
     INFO(stepper->failure().reason);
     REQUIRE(ok);
-    return stepper->counters().definite_fallbacks;
-  };
-  Vector x_exact, v_exact, x_definite, v_definite;
-  const long long fallbacks = step(StiffnessTreatment::exact, x_exact, v_exact);
-  CHECK(step(StiffnessTreatment::definite, x_definite, v_definite) == 0);
-  // The exact matrix failed at least once and the step still reached implicit Euler's step: both treatments
-  // converge to the same stage, whatever matrix the iterations used.
-  CHECK(fallbacks >= 1);
-  const double motion = (x_exact - x0).lpNorm<Eigen::Infinity>();
-  CHECK(motion > 1e-3);
-  CHECK((x_exact - x_definite).lpNorm<Eigen::Infinity>() <= 1e-7 * motion);
+    if (step == 66) before = stepper->counters().definite_fallbacks;
+  }
+  CHECK(stepper->counters().definite_fallbacks > before);  // step 67 (or 68) needed the definite matrix
+  CHECK(x.allFinite());
 }
