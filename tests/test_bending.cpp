@@ -94,6 +94,41 @@ TEST_CASE("a hinge folded by a known angle: hinge_angle returns it, with the doc
   }
 }
 
+TEST_CASE("a degenerate hinge (an edge collapsed to a point, a triangle of zero area) gives 0, not NaN") {
+  Vector12 ok;
+  ok << 0, 0, 0, 1, 0, 0, 0.4, 1, 0, 0.6, -1, 0.2;
+  CHECK_FALSE(hinge_degenerate(ok));
+  Vector12 flat_apex = ok, collapsed_edge = ok, one_point = Vector12::Zero();
+  flat_apex.segment<3>(6) << 0.3, 0, 0;          // x2 on the edge's line: triangle (x0, x1, x2) has no area
+  collapsed_edge.segment<3>(3) = ok.segment<3>(0);  // x1 = x0
+  for (const Vector12& x : {flat_apex, collapsed_edge, one_point}) {
+    CHECK(hinge_degenerate(x));
+    CHECK(hinge_angle(x) == 0.0);
+    CHECK(hinge_angle_gradient(x).norm() == 0.0);
+    CHECK(hinge_angle_hessian(x).norm() == 0.0);
+    CHECK(hinge_angle_hessian_forward_mode(x).norm() == 0.0);
+  }
+  // An apex a hair off the line (height 1e-12 |e|) is not degenerate: its angle and gradient are finite.
+  Vector12 thin = ok;
+  thin.segment<3>(6) << 0.3, 1e-12, 0;
+  CHECK_FALSE(hinge_degenerate(thin));
+  CHECK(std::isfinite(hinge_angle_gradient(thin).norm()));
+  // A sheet with one cell crushed (a particle moved onto its neighbour): energy, forces and Hessian stay finite.
+  const Scene scene(free_sheet(4, 4, 0.1));
+  Vector x = scene.initial_positions();
+  const int a = scene.slot(scene.grid().particle(1, 1)), b = scene.slot(scene.grid().particle(1, 2));
+  x.segment<3>(3 * a) = x.segment<3>(3 * b);
+  x[3 * scene.slot(scene.grid().particle(2, 2)) + 2] = 0.03;  // and a bend elsewhere, so something is nonzero
+  BendingEnergy bending(scene, BendingModel::hinge, 1e-3);
+  Vector f = Vector::Zero(scene.dof_count());
+  bending.add_forces(x, f);
+  const double E = bending.energy(x);
+  CHECK(std::isfinite(E));
+  CHECK(E > 0);
+  CHECK(f.allFinite());
+  CHECK(Eigen::MatrixXd(bending.hessian(x, false)).allFinite());
+}
+
 TEST_CASE("both bending models: forces are minus the energy's gradient and the Hessian its derivative") {
   for (const BendingModel model : {BendingModel::hinge, BendingModel::quadratic}) {
     CAPTURE(bending_models().name(model));

@@ -25,7 +25,10 @@ using namespace cloth;
 namespace {
 
 // The outputs of one strip: its rest shape and what it measured.
-std::vector<std::string> single_outputs() { return {"final.dat", "run.txt"}; }
+OutputList single_outputs() {
+  return {{"final.dat", OutputKind::data, "the strip's rest shape, final.dat's format (model page)"},
+          {"run.txt", OutputKind::data, "the strip, its model, how close to rest, and its tip against the elastica"}};
+}
 
 // The flags the cantilever's own geometry replaces: its grid follows from --overhang, --spacing and the width,
 // and its clamp is the pin set. Refused when given at all, whatever their value.
@@ -120,6 +123,9 @@ int main(int argc, char** argv) {
   cli.add_switch("--drape-runs", "the curtain of Chapter 10 hanging with and without bending, and its cost",
                  [&] { drape = true; });
   cli.add_switch("--full", "with --report-runs: the convergence study down to L/160 (slower)", [&] { full = true; });
+  cli.declare_outputs([&](const Options&) {
+    return drape ? drape_outputs() : report ? report_outputs() : single_outputs();
+  });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     if (full && !report) throw InputError("--full: it widens --report-runs: expected --report-runs with it");
@@ -131,11 +137,11 @@ int main(int argc, char** argv) {
     params.bending_rigidity = opt.scene.bending_rigidity;
     if (report && drape) throw InputError("--drape-runs: expected either --report-runs or --drape-runs, not both");
     if (drape) {
-      prepare_outputs(opt.run.out_dir, drape_outputs(), single_outputs());
+      prepare_declared_outputs(opt.run.out_dir, drape_outputs(), single_outputs() + report_outputs());
       return drape_runs(opt.run.out_dir, reader_command(argc, argv));
     }
     if (report) {
-      prepare_outputs(opt.run.out_dir, report_outputs(), single_outputs());
+      prepare_declared_outputs(opt.run.out_dir, report_outputs(), single_outputs() + drape_outputs());
       return report_runs(opt.run.out_dir, full, reader_command(argc, argv));
     }
     try {
@@ -143,7 +149,7 @@ int main(int argc, char** argv) {
     } catch (const InputError& e) {
       throw InputError(std::string("--overhang, --spacing: ") + e.what());
     }
-    prepare_outputs(opt.run.out_dir, single_outputs(), report_outputs());
+    prepare_declared_outputs(opt.run.out_dir, single_outputs(), report_outputs() + drape_outputs());
     return single_strip(params, opt.run.out_dir, cli.program());
   });
 }

@@ -35,7 +35,7 @@ set logscale xy
 set format x "10^{%L}"
 set format y "10^{%L}"
 set autoscale
-set key inside left top font ",11" box opaque
+set key inside right bottom font ",11" box opaque
 G = data.'/convergence.dat'
 plot G u 2:3 w lp pt 7 lw 2 lc rgb "#1f77b4" t "hinge", \
      G u 2:5 w lp pt 6 lw 2 lc rgb "#2ca02c" t "quadratic", \

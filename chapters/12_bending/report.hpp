@@ -3,12 +3,14 @@
 // fabrics, and what bending costs beside the springs.
 #pragma once
 
+#include "program/output_spec.hpp"
+
 #include <functional>
 #include <string>
 #include <vector>
 
-/// The files `--report-runs` writes, for prepare_outputs.
-std::vector<std::string> report_outputs();
+/// The files `--report-runs` writes, declared once (program/output_spec.hpp).
+cloth::OutputList report_outputs();
 
 /// Writes them into `dir`; `full` refines the convergence study further. `command` is the line under each table.
 /// Returns the exit status (0).
@@ -22,8 +24,8 @@ void write_stable_step(const std::string& dir, const std::string& command);
 /// The median over 5 repetitions of the mean time of 5 calls of `work` [s].
 double median_seconds(const std::function<void()>& work);
 
-/// The files `--drape-runs` writes, for prepare_outputs.
-std::vector<std::string> drape_outputs();
+/// The files `--drape-runs` writes, declared once.
+cloth::OutputList drape_outputs();
 
 /// The curtain of Chapter 10 hanging with and without bending (drape.cpp): the hem's shape, the sheet's
 /// curvature over time, and what the bending term costs per step. Returns the exit status (0).

@@ -285,8 +285,22 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     }
     if (k == settings_.max_iterations) break;
     // Newton update: J dv = -r with J = M - gamma df/dv - gamma^2 df/dx, at (x~ + gamma V, V) when fresh.
+    // [singular_fallback]
+    // An exact matrix can be singular, not only indefinite: M + gamma^2 H passes through a zero eigenvalue when
+    // the Hessian H has negative curvature of size M / gamma^2 (compressed springs; hinges folded away from flat,
+    // whose theta d^2 theta / dx^2 term is indefinite). LDL^T then meets a zero pivot. That iteration takes the
+    // definite matrix, which has no negative part, and counts it beside the non-descending ones below.
+    const auto refresh_or_definite = [&] {
+      if (refresh(V, gamma, settings_.treatment)) return true;
+      if (settings_.treatment == StiffnessTreatment::definite ||
+          linear_failure_kind_ != StepFailureKind::factorization_singular)
+        return false;
+      ++counters_.definite_fallbacks;
+      return refresh(V, gamma, StiffnessTreatment::definite);
+    };
+    // [singular_fallback]
     bool fresh = stale;
-    if (fresh && !refresh(V, gamma, settings_.treatment)) {
+    if (fresh && !refresh_or_definite()) {
       fail_linear(k + 1, residual);
       counters_.newton_iterations += k + 1;
       return false;
@@ -296,7 +310,7 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     const auto descends = [&] { return solved && r_.dot(dv_) > 0; };
     // A kept matrix whose update does not descend is first replaced by a fresh one (modified Newton).
     if (minimising && !fresh && !descends()) {
-      if (!refresh(V, gamma, settings_.treatment)) {
+      if (!refresh_or_definite()) {
         fail_linear(k + 1, residual);
         counters_.newton_iterations += k + 1;
         return false;

@@ -19,8 +19,9 @@ struct StepCounters {
   long long newton_iterations = 0;    ///< summed over steps
   long long line_search_halvings = 0; ///< Newton updates halved because the full one raised the residual or
                                       ///< did not decrease the incremental potential enough
-  long long definite_fallbacks = 0;   ///< minimising Newton iterations whose exact update did not descend, solved
-                                      ///< again with the definite matrix
+  long long definite_fallbacks = 0;   ///< Newton iterations whose exact matrix was singular (a zero pivot), or,
+                                      ///< minimising, whose exact update did not descend: solved again with the
+                                      ///< definite matrix
 };
 
 /// What stopped a step. run.txt's status names the kind (`step_failed newton_not_converged ...`, the model page's

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <utility>
@@ -79,6 +80,15 @@ Eigen::Matrix<T, 12, 1> angle_gradient(const Eigen::Matrix<T, 12, 1>& x) {
 
 }  // namespace
 
+bool hinge_degenerate(const Vector12& x) {
+  const Eigen::Vector3d x0 = x.segment<3>(0), e = x.segment<3>(3) - x0;
+  const double e2 = e.squaredNorm();
+  // |N|^2 = (|e| h)^2 for an apex at height h over the edge: h <= eps |e| is below the positions' rounding.
+  const double floor = std::numeric_limits<double>::epsilon() * e2;
+  return !(e2 > 0) || !(e.cross(x.segment<3>(6) - x0).squaredNorm() > floor * floor) ||
+         !((x.segment<3>(9) - x0).cross(e).squaredNorm() > floor * floor);
+}
+
 std::vector<Hinge> grid_hinges(const Grid& g, GridSplit split) {
   using IJ = std::array<int, 2>;
   // Every triangle's edges, keyed by their two particles: the first triangle to reach an edge leaves its apex,
@@ -126,6 +136,7 @@ std::vector<Hinge> grid_hinges(const Grid& g, GridSplit split) {
 }
 
 double hinge_angle(const Vector12& x) {
+  if (hinge_degenerate(x)) return 0;
   const Eigen::Vector3d x0 = x.segment<3>(0), x1 = x.segment<3>(3), x2 = x.segment<3>(6), x3 = x.segment<3>(9);
   const Eigen::Vector3d e = x1 - x0;
   const Eigen::Vector3d N1 = e.cross(x2 - x0), N2 = (x3 - x0).cross(e);
@@ -133,9 +144,12 @@ double hinge_angle(const Vector12& x) {
   return std::atan2(N1.cross(N2).dot(e) / e.norm(), N1.dot(N2));
 }
 
-Vector12 hinge_angle_gradient(const Vector12& x) { return angle_gradient<double>(x); }
+Vector12 hinge_angle_gradient(const Vector12& x) {
+  return hinge_degenerate(x) ? Vector12::Zero() : angle_gradient<double>(x);
+}
 
 Matrix12 hinge_angle_hessian_forward_mode(const Vector12& x) {
+  if (hinge_degenerate(x)) return Matrix12::Zero();
   using Dual = Eigen::AutoDiffScalar<Vector12>;
   Eigen::Matrix<Dual, 12, 1> ad;
   for (int k = 0; k < 12; ++k) ad[k] = Dual(x[k], 12, k);
@@ -153,6 +167,7 @@ Matrix12 hinge_angle_hessian_forward_mode(const Vector12& x) {
 // edge terms g0 = -(1 - s2) g2 - (1 - s3) g3 and g1 = -s2 g2 - s3 g3 then follow by the product rule. Every
 // piece is a 3 x 3 block or a 1 x 3 row per particle, and the zero ones are never multiplied.
 Matrix12 hinge_angle_hessian(const Vector12& x) {
+  if (hinge_degenerate(x)) return Matrix12::Zero();
   using V3 = Eigen::Vector3d;
   using M3 = Eigen::Matrix3d;
   using R3 = Eigen::RowVector3d;

@@ -52,6 +52,12 @@ const NameTable<GridSplit>& grid_splits();
 /// these from the hinges' weights).
 std::vector<Hinge> grid_hinges(const Grid& grid, GridSplit split);
 
+/// True when the hinge has no dihedral angle: its edge has collapsed to a point, or an apex lies on the edge's
+/// line (a triangle of zero area, its apex within eps |e| of the line). hinge_angle, its gradient and Hessians
+/// are then 0 (the hinge contributes nothing), not the 0/0 of their formulas: a crushed cell costs no bending and
+/// gives no NaN.
+bool hinge_degenerate(const Vector12& x);
+
 /// The signed dihedral angle theta of a hinge, the angle between the normals N1 = e x (x2 - x0) and
 /// N2 = (x3 - x0) x e, e = x1 - x0: 0 when flat, positive when the apices drop below the side N1 points to (a
 /// ridge seen from there). By atan2, so that it is accurate near 0 and defined up to +-pi.

@@ -81,6 +81,12 @@ void write_outputs(const RunResult& result, const Stepper& stepper, const RunSet
   };
   // The flexion springs' own stiffness only when one was given, so that every other run.txt stays as it was.
   if (p.flexion_stiffness) kv.insert(kv.begin() + 5, {"K_flexion", num(*p.flexion_stiffness)});
+  // The Newton iterations that took the definite matrix instead of a singular or non-descending exact one, only
+  // when there were any.
+  if (result.counters.definite_fallbacks > 0) {
+    const auto cg = std::find_if(kv.begin(), kv.end(), [](const auto& entry) { return entry.first == "cg_iterations"; });
+    kv.insert(cg + 1, {"definite_fallbacks", std::to_string(result.counters.definite_fallbacks)});
+  }
   // Likewise the initial swing, only when the run starts turning.
   if (p.initial_swing != 0) {
     const auto v0 = std::find_if(kv.begin(), kv.end(), [](const auto& entry) { return entry.first == "v0"; });
