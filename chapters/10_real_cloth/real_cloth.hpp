@@ -37,10 +37,10 @@ void stable_steps(const Settings& s, const std::vector<double>& stiffnesses);
 // [methods]
 /// The stiffnesses of the sweep [N/m] and its methods, by their one names.
 inline const std::vector<double> stiffnesses = {1e3, 1e4, 1e5, 1e6};
-inline const std::vector<std::string> methods = {"symplectic_euler",         "rk4",
-                                                 "implicit_euler/exact",     "implicit_euler/one/exact",
-                                                 "implicit_euler/one/cg",    "implicit_euler/cg",
-                                                 "local_global",             "local_global/50it"};
+inline const std::vector<std::string> methods = {"symplectic_euler",      "rk4",
+                                                 "implicit_euler/exact",  "implicit_euler/one/exact",
+                                                 "implicit_euler/one/cg", "implicit_euler/cg",
+                                                 "local_global",          "local_global/50it"};
 // [methods]
 
 /// One run of a sweep: a method at one step, its cost and its error at T.
