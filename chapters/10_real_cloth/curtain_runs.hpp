@@ -1,6 +1,6 @@
-// The pieces of Chapter 10's study of cloth that moves (curtain.hpp): its scenes and methods (curtain.cpp), a
-// scene's reference and every method's runs measured against it (curtain_runs.cpp), and the tables and data written
-// from them (curtain_tables.cpp).
+// The pieces of Chapter 10's study of cloth that moves (curtain.hpp): its scenes and methods (here), a scene's
+// reference and every method's runs measured against it (curtain_runs.cpp), the tables and data written from them
+// (curtain_tables.cpp), and implicit Euler's damping of a rigid rotation (rotation.cpp).
 #pragma once
 
 #include "study.hpp"

@@ -1,6 +1,6 @@
-// Chapter 10's rotation study: implicit Euler turning two stiff springs rigidly about a pinned edge, its angular
-// rate after each step against the stiff-limit prediction the page derives (a rigid rotation loses energy at the
-// rate 2 h w0^2), with RK4 at a small step as the exact motion.
+// Chapter 10's rotation study: two particles hung from a pinned edge by stiff springs and turned rigidly about it,
+// stepped by implicit Euler; the angular rate after each step against the stiff-limit prediction the page derives
+// (a rigid rotation loses energy at the rate 2 h w0^2 at first), with RK4 at a small step as the exact motion.
 #include "curtain_runs.hpp"
 
 #include "model/single_spring.hpp"
