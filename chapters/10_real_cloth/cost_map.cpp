@@ -120,7 +120,8 @@ void predicted_map(const Settings& s, const StepCosts& cost, const std::map<doub
       steps *= lattice_fastest_frequency({K, K, K, fabric(n, K).mass}) /
                lattice_fastest_frequency({K, K, K, fabric(20, K).mass});
     const std::string proxy = cost_proxy(m.method);
-    return m.seconds / static_cast<double>(m.steps) * cost.at(proxy).at(n).seconds / cost.at(proxy).at(20).seconds * steps;
+    return m.seconds / static_cast<double>(m.steps) * cost.at(proxy).at(n).seconds / cost.at(proxy).at(20).seconds *
+           steps;
   };
   // [cost_model]
   std::string dat = "# tol K n method predicted_cpu_seconds\n";

@@ -94,7 +94,7 @@ OutputList curtain_outputs(bool quick) {
     files = files + OutputList{{"curtain_ladder.md", data, "the same square metre at 20 x 20 to 80 x 80"},
                                {"curtain_ladder.dat", data, "the runs of curtain_ladder.md"},
                                {"curtain_sensitivity.md", data, "how fast two nearby curtains separate"},
-                               {"curtain_sensitivity.dat", data, "the distance of curtain_sensitivity.md at every frame"}};
+                               {"curtain_sensitivity.dat", data, "the distances of curtain_sensitivity.md"}};
   return files;
 }
 

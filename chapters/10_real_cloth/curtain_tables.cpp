@@ -67,8 +67,9 @@ MarkdownTable runs_table(const SceneResult& r) {
       phase = std::isnan(run.minimum) ? "after T"
                                       : format("%.3f s (%+.3f)", run.minimum, run.minimum - r.reference_minimum);
     t.add_row({label(run.method), step_text(run.h), format("%.3g", run.seconds), metres(run.error.at_end),
-               metres(run.error.over_frames), format("%.1f %%", std::abs(run.energy_lost) < 5e-4 ? 0.0 : 100 * run.energy_lost), format("%.2g", run.strain),
-               phase, verdict_cell(run, r.motion.over_frames, 1e-2), verdict_cell(run, r.motion.over_frames, 1e-3)});
+               metres(run.error.over_frames),
+               format("%.1f %%", std::abs(run.energy_lost) < 5e-4 ? 0.0 : 100 * run.energy_lost),
+               format("%.2g", run.strain), phase, verdict_cell(run, r.motion.over_frames, 1e-2), verdict_cell(run, r.motion.over_frames, 1e-3)});
   }
   return t;
 }
@@ -118,8 +119,9 @@ void write_runs_data(const std::string& out, const SceneResult& r) {
                   run.ok ? "ok" : "failed");
   write_text(out, "curtain_" + r.scene.tag + ".dat", dat);
   // The free edge's mean height: the reference, then every run, one gnuplot index block each.
-  std::string edge = "# t free_edge_mean_height; block 0 the reference, then one block per run in the order of curtain_" +
-                     r.scene.tag + ".dat\n# reference\n";
+  std::string edge = format("# t free_edge_mean_height; block 0 the reference, then one block per run in the order "
+                            "of curtain_%s.dat\n# reference\n",
+                            r.scene.tag.c_str());
   for (std::size_t k = 0; k < r.t.size(); ++k) edge += format("%.6f %.6e\n", r.t[k], r.edge[k]);
   for (const CurtainRun& run : r.runs) {
     edge += format("\n\n# %s h = %s\n", run.method.c_str(), step_text(run.h).c_str());

@@ -3,8 +3,7 @@
 // step, controlled Dormand-Prince) and with SUNDIALS (CVODE's BDF, ARKODE's backward Euler, both with KLU on the
 // analytic Jacobian), each once with a plain loop over the springs (plain_fabric.hpp) and once driving the book's
 // own force routine (peer_programs.cpp; same_model.cpp checks the two are one model), against the book's methods.
-// Every run's error is the largest distance of a particle at T from the reference (RK4 at a quarter of its
-// stable step).
+// A run's error: the largest distance of a particle at T from the reference (RK4 at 1/4 of its stable step).
 #include "peer_programs.hpp"
 #include "same_model.hpp"
 #include "study.hpp"
@@ -54,7 +53,8 @@ double best_time(int runs, double budget, Body&& body) {
   return best;
 }
 
-std::string step_text(long long steps) {
+// The step T / steps as the page writes it: "1/60" when a second holds a whole number of them.
+std::string step_of(long long steps) {
   const double per_second = static_cast<double>(steps) / T;
   if (std::abs(per_second - std::round(per_second)) < 1e-9 * per_second) return format("1/%.0f", per_second);
   return format("%.3g", T / static_cast<double>(steps));
@@ -72,11 +72,10 @@ const Row* fastest(const std::vector<Row>& rows, bool book, double tol) {
 // The comparison's settings and what every run is measured against.
 struct Bench {
   const Scene& scene;
-  Vector reference;          ///< every particle's position at T (RK4 at a quarter of its stable step)
-  long long rk4_steps = 0;   ///< 95 % of the lattice's stable step, as in the chapter's sweep
-  long long se_steps = 0;
+  Vector reference;  ///< every particle's position at T (RK4 at a quarter of its stable step)
+  long long rk4_steps = 0, se_steps = 0;  ///< 95 % of the lattice's stable step, as in the chapter's sweep
   bool quick = false;
-  int runs = 3;              ///< timed runs of a configuration, the fastest kept
+  int runs = 3;  ///< timed runs of a configuration, the fastest kept
   std::vector<Row> rows;
 };
 
@@ -84,6 +83,7 @@ void print_row(const Row& r) {
   std::printf("  %-34s %-18s %7lld steps %8.4f s  error %.2e %s\n", r.program.c_str(), r.setting.c_str(), r.steps,
               r.seconds, r.error, r.note.c_str());
 }
+
 // Times a peer's run of `system` and measures its error at T against the reference.
 void record(Bench& b, Row row, const std::function<Outcome()>& run, OdeSystem& system) {
   const double budget = b.quick ? 0.3 : 2.0;  // repeat a configuration while its runs have cost less than this
@@ -112,28 +112,27 @@ void peer_runs(Bench& b, PlainSystem& plain, CoreSystem& core) {
     const char* name;
     OdeSystem* system;
   };
-  const bool quick = b.quick;
   for (const Forces& f : {Forces{"plain loop", &plain}, Forces{"book's forces", &core}}) {
     const bool plain_loop = f.system == &plain;
-    record(b, {format("odeint RK4, %s", f.name), "odeint", "h = " + step_text(b.rk4_steps), true, "", b.rk4_steps},
+    record(b, {format("odeint RK4, %s", f.name), "odeint", "h = " + step_of(b.rk4_steps), true, "", b.rk4_steps},
            [&] { return odeint_rk4(*f.system, T, b.rk4_steps); }, *f.system);
-    for (double tol : quick ? std::vector<double>{1e-3} : std::vector<double>{1e-2, 1e-4, 1e-6})
-      if (!quick || !plain_loop)
+    for (double tol : b.quick ? std::vector<double>{1e-3} : std::vector<double>{1e-2, 1e-4, 1e-6})
+      if (!b.quick || !plain_loop)
         record(b, {format("odeint Dormand-Prince, %s", f.name), "odeint", "tol = " + format_number(tol), true, "", 0},
                [&] { return odeint_dopri5(*f.system, T, tol); }, *f.system);
     // CVODE grows costly fast as the tolerance tightens (at 1e-4 it takes some 17000 steps): two tolerances
     // show it.
-    for (double tol : quick ? std::vector<double>{1e-2} : std::vector<double>{1e-2, 1e-3})
-      if (!quick || !plain_loop)
+    for (double tol : b.quick ? std::vector<double>{1e-2} : std::vector<double>{1e-2, 1e-3})
+      if (!b.quick || !plain_loop)
         record(b, {format("CVODE BDF + KLU, %s", f.name), "SUNDIALS", "tol = " + format_number(tol), true, "", 0},
                [&] { return sundials_run(*f.system, Sundials::cvode_bdf, T, tol, 0); }, *f.system);
-    for (long long steps : quick ? std::vector<long long>{30} : std::vector<long long>{15, 30, 60, 120, 240, 480})
-      record(b, {format("ARKODE backward Euler + KLU, %s", f.name), "SUNDIALS", "h = " + step_text(steps), true, "",
+    for (long long steps : b.quick ? std::vector<long long>{30} : std::vector<long long>{15, 30, 60, 120, 240, 480})
+      record(b, {format("ARKODE backward Euler + KLU, %s", f.name), "SUNDIALS", "h = " + step_of(steps), true, "",
                  steps},
              [&] { return sundials_run(*f.system, Sundials::arkode_newton, T, 0, steps); }, *f.system);
-    for (long long steps : quick ? std::vector<long long>{30} : std::vector<long long>{15, 30, 60, 120, 240})
-      if (!quick || !plain_loop)
-        record(b, {format("ARKODE linearly implicit Euler + KLU, %s", f.name), "SUNDIALS", "h = " + step_text(steps),
+    for (long long steps : b.quick ? std::vector<long long>{30} : std::vector<long long>{15, 30, 60, 120, 240})
+      if (!b.quick || !plain_loop)
+        record(b, {format("ARKODE linearly implicit Euler + KLU, %s", f.name), "SUNDIALS", "h = " + step_of(steps),
                    true, "", steps},
                [&] { return sundials_run(*f.system, Sundials::arkode_linear, T, 0, steps); }, *f.system);
   }
@@ -144,7 +143,7 @@ void peer_runs(Bench& b, PlainSystem& plain, CoreSystem& core) {
 // The book's methods, from the registry (ch10::make_method), on the same scene.
 void book_runs(Bench& b) {
   const auto book = [&](const std::string& method, long long steps) {
-    Row row{"book: " + label(method), "book", "h = " + step_text(steps), true, "", steps};
+    Row row{"book: " + label(method), "book", "h = " + step_of(steps), true, "", steps};
     const Run r = run_to(b.scene, method, T, steps, b.quick ? 0.05 : 0.5);
     throw_if_interrupted();
     row.seconds = r.seconds;
@@ -191,7 +190,8 @@ void write_comparison(const std::vector<Row>& rows, const std::string& dir, cons
     ratio += format("To %s the fastest peer is %s (%s), %.3g s; the book's fastest is %s (%s), %.3g s: %.2f times "
                     "the peer's time. ",
                     accuracy.c_str(), peer->program.c_str(), peer->setting.c_str(), peer->seconds,
-                    mine->program.substr(6).c_str(), mine->setting.c_str(), mine->seconds, mine->seconds / peer->seconds);
+                    mine->program.substr(6).c_str(), mine->setting.c_str(), mine->seconds,
+                    mine->seconds / peer->seconds);
     std::printf("%s: book %.4f s (%s %s), peer %.4f s (%s %s), ratio %.3f\n", accuracy.c_str(), mine->seconds,
                 mine->program.c_str(), mine->setting.c_str(), peer->seconds, peer->program.c_str(),
                 peer->setting.c_str(), mine->seconds / peer->seconds);

@@ -143,7 +143,8 @@ int main(int argc, char** argv) {
                                   p.initial_velocity_z, /*edge=*/true);
     const double h_se = 4.4e-5, h_rk4 = 6.4e-5;  // just inside each explicit method's stable step here
     std::vector<Contender> contenders = {
-        {"RATTLE", true, ladder(T / 600, 0.5, quick ? 2 : 4), [&](long long n) { return book_run(scene, "rattle", n); }},
+        {"RATTLE", true, ladder(T / 600, 0.5, quick ? 2 : 4),
+         [&](long long n) { return book_run(scene, "rattle", n); }},
         {"fast projection", true, ladder(T / 600, 0.5, quick ? 2 : 4),
          [&](long long n) { return book_run(scene, "fast_projection", n); }},
         {"symplectic Euler (the book's forces)", true, ladder(h_se, 0.5, quick ? 1 : 3),

@@ -54,8 +54,8 @@ void rotation_study(const std::string& out, const std::string& command) {
   MarkdownTable t({"h [s]", "h w0", "predicted w(T) / w0", "implicit Euler, Newton", "implicit Euler, 1 iteration",
                    "RK4 (at 1e-4 s)"},
                   "rrrrrr");
-  std::string dat = "# t w_measured w_predicted; one block per (method, h): implicit_euler/exact then implicit_euler/one/exact "
-                    "at h = 1/30, 1/60, 1/120, then rk4 at 1e-4\n";
+  std::string dat = "# t w_measured w_predicted; one block per (method, h): implicit_euler/exact then "
+                    "implicit_euler/one/exact at h = 1/30, 1/60, 1/120, then rk4 at 1e-4\n";
   const RotationRun exact = rotation("rk4", 1e-4, Kspring, w0, T);
   // The stiff-limit recurrence of the page: the rate after each step of h.
   const auto predicted_rates = [&](double h) {

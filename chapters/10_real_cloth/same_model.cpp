@@ -45,7 +45,8 @@ void check_same_model(const Scene& scene, PlainSystem& plain, CoreSystem& core, 
   }
   // Jacobians as dense matrices over the free coordinates (1200 x 1200 doubles each half: 46 MB in all).
   const auto dense = [](OdeSystem& sys, const std::vector<double>& y) {
-    std::vector<sunindextype> starts(static_cast<std::size_t>(sys.size()) + 1), rows(static_cast<std::size_t>(sys.nonzeros()));
+    std::vector<sunindextype> starts(static_cast<std::size_t>(sys.size()) + 1);
+    std::vector<sunindextype> rows(static_cast<std::size_t>(sys.nonzeros()));
     std::vector<double> values(rows.size());
     sys.jacobian(y.data(), starts.data(), rows.data(), values.data());
     Eigen::MatrixXd J = Eigen::MatrixXd::Zero(sys.size(), sys.size());
