@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
                 [&](const std::string& s) { method_name = s; });
   newton.add_to(cli);
   iterations.add_to(cli);
+  cli.declare_outputs([](const Options&) { return run_output_specs(); });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     const Method* method = nullptr;
@@ -71,7 +72,7 @@ int main(int argc, char** argv) {
     } catch (const InputError& e) {
       throw InputError("--method " + method->name + ": " + e.what());
     }
-    prepare_outputs(opt.run.out_dir, run_output_names());
+    prepare_declared_outputs(opt.run.out_dir, run_output_specs());
 
     RunSettings run = opt.run;
     run.progress = terminal_progress(cli.program());

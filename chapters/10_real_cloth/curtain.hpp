@@ -4,16 +4,15 @@
 // motion.
 #pragma once
 
+#include "program/output_spec.hpp"
+
 #include <string>
-#include <vector>
 
 namespace ch10 {
 
-/// The files the curtain study writes into its output folder (fragments, data, the figures' data): those of both
-/// runs, and with `full` those only the full run writes as well.
-std::vector<std::string> curtain_outputs(bool full);
-/// The files only the full run writes (a quick run removes them: they would be stale).
-std::vector<std::string> curtain_full_only();
+/// The files the curtain study writes into its output folder (fragments, data, the figures' data), `quick` in the
+/// quick run.
+cloth::OutputList curtain_outputs(bool quick);
 
 /// Runs the study and writes its files to `out`; `command` is what a reader types to measure the tables again.
 void curtain_study(bool quick, const std::string& out, const std::string& command);

@@ -15,6 +15,30 @@
 
 using namespace cloth;
 
+namespace {
+
+// The parts a run measures: --quick's one small part, every part with --all, else those named by --part.
+std::vector<ch10::MapPart> parts_measured(const std::vector<ch10::MapPart>& named, bool all, bool quick) {
+  if (quick) return {{"curtain", 12, 1e4}};
+  return all ? ch10::full_map() : named;
+}
+
+// The files a run writes: each part's runs, and with the tables the map of each scene. The page includes the
+// quick run's curtain table; the full map's tables it includes from the committed data/map_full.
+OutputList map_outputs(const std::vector<ch10::MapPart>& parts, bool tables, bool quick) {
+  OutputList files;
+  for (const ch10::MapPart& p : parts)
+    files.push_back({"map_" + p.name() + ".dat", OutputKind::data, "every run of the part: setting, CPU time, error"});
+  if (tables)
+    files = files + OutputList{{"map_curtain.md", quick ? OutputKind::fragment : OutputKind::data,
+                                "the fastest program to each level on the curtain, per grid and K"},
+                               {"map_swing.md", OutputKind::data,
+                                "the fastest program to each level on the swinging curtain, per grid and K"}};
+  return files;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CommandLine cli("ch10_map",
                   "Chapter 10's map: the curtain and the swinging curtain at n x n particles on one square metre and\n"
@@ -39,6 +63,9 @@ int main(int argc, char** argv) {
   cli.add_switch("--tables", "write the map's tables from the parts measured in --out", [&] { tables = true; });
   cli.add_value("--budget", "SECONDS", "no run predicted longer than this is started (default 600)",
                 [&](const std::string& s) { plan.run_budget = parse_number(s); });
+  cli.declare_outputs([&](const Options&) {
+    return map_outputs(parts_measured(parts, all, quick), tables || quick, quick);
+  });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     const std::string dir = opt.run.out_dir;
@@ -46,20 +73,15 @@ int main(int argc, char** argv) {
     if (parts.empty() && !all && !quick && !tables)
       throw InputError("nothing to measure: expected --part, --all, --quick or --tables");
     if (quick && (all || !parts.empty())) throw InputError("--quick measures its own part: expected no --part or --all");
+    parts = parts_measured(parts, all, quick);
     if (quick) {
-      parts = {{"curtain", 12, 1e4}};
       plan.run_budget = 1;
       plan.reference_tolerance = 1e-8;
       plan.max_runs_per_series = 4;
       plan.prune_factor = 3;
       tables = true;
     }
-    if (all) parts = ch10::full_map();
-    std::vector<std::string> outputs;
-    for (const ch10::MapPart& p : parts) outputs.push_back("map_" + p.name() + ".dat");
-    if (tables)
-      for (const char* f : {"map_curtain.md", "map_swing.md"}) outputs.push_back(f);
-    prepare_outputs(dir, outputs);
+    prepare_declared_outputs(dir, map_outputs(parts, tables, quick));
     // The reference's cost model: Dormand-Prince's step is bounded by its stability on the fastest lattice mode,
     // omega ~ n sqrt(K), so its time grows like particles x steps ~ n^3 sqrt(K) (fitted on the parts measured).
     double reference_rate = 0;

@@ -141,7 +141,7 @@ std::vector<std::string> write_map_tables(const std::string& dir, const std::str
                     "lrrllll");
     for (const Part& p : parts) {
       if (p.part.scene != scene) continue;
-      const std::string grid = format("%d x %d", p.part.n, p.part.n), K = format("%g", p.part.K);
+      const std::string grid = format("%d x %d", p.part.n, p.part.n), K = stiffness_text(p.part.K);
       const std::string motion = format("%.3g m", p.motion);
       for (const auto& [name, level] : std::vector<std::pair<std::string, double>>{
                {format("plausible: %.3g cm", 5 * p.motion), 0.05 * p.motion}, {"1 cm", 1e-2}, {"1 mm", 1e-3}}) {
@@ -164,7 +164,7 @@ std::vector<std::string> write_map_tables(const std::string& dir, const std::str
       }
       if (present) continue;
       if (nearest == nullptr) {
-        add(missing, {format("%d x %d", missing.n, missing.n), format("%g", missing.K), "not measured", "-",
+        add(missing, {format("%d x %d", missing.n, missing.n), stiffness_text(missing.K), "not measured", "-",
                       "not measured", "not measured", "not measured"});
         continue;
       }
@@ -173,7 +173,7 @@ std::vector<std::string> write_map_tables(const std::string& dir, const std::str
                                         nearest->part.n);
       for (const auto& [name, level] : std::vector<std::pair<std::string, double>>{
                {"plausible", 0.05 * nearest->motion}, {"1 cm", 1e-2}, {"1 mm", 1e-3}})
-        add(missing, {grid, format("%g", missing.K), motion, name, scaled(*nearest, missing.n, "book", level),
+        add(missing, {grid, stiffness_text(missing.K), motion, name, scaled(*nearest, missing.n, "book", level),
                       scaled(*nearest, missing.n, "peer", level), "not predicted"});
     }
     std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });

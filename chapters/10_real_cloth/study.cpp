@@ -141,6 +141,13 @@ std::string step_text(double h) {
   return format("%.3g", h);
 }
 
+std::string stiffness_text(double K) {
+  static const char* const superscript[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  const double e = std::round(std::log10(K));
+  if (K > 0 && e >= 2 && e <= 9 && K == std::pow(10.0, e)) return std::string("10") + superscript[static_cast<int>(e)];
+  return format("%g", K);
+}
+
 std::string format(const char* fmt, ...) {
   char buffer[1024];
   va_list args;

@@ -53,6 +53,10 @@ void write_text(const std::string& dir, const std::string& name, const std::stri
 /// A step as the page writes it: "1/60" when 1/h is whole, else "4.7e-05".
 std::string step_text(double h);
 
+/// A stiffness as the page writes it: a power of ten from 100 on as 10² ... 10⁶ (the page's 10^6: a table cannot
+/// hold a formula), any other value as printf's %g.
+std::string stiffness_text(double K);
+
 /// printf into a std::string.
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 

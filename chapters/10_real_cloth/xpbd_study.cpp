@@ -159,6 +159,10 @@ void strain_table(const std::string& dir, const std::string& command) {
   write_table_fragment(dir + "/xpbd_strain.md", table, command);
 }
 
+const OutputList xpbd_outputs = {
+    {"xpbd_gap.md", OutputKind::fragment, "XPBD's converged step against implicit Euler's, over K and h"},
+    {"xpbd_strain.md", OutputKind::fragment, "the stretch XPBD and small steps let through on the curtain"}};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -166,9 +170,10 @@ int main(int argc, char** argv) {
                   "Chapter 10: XPBD's converged step against implicit Euler's on the moving curtain (K and h), and\n"
                   "the stretch XPBD and small steps let through on the curtain released from flat.");
   cli.use_common({"--out"});
+  cli.declare_outputs([](const Options&) { return xpbd_outputs; });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    prepare_outputs(opt.run.out_dir, {"xpbd_gap.md", "xpbd_strain.md"});
+    prepare_declared_outputs(opt.run.out_dir, xpbd_outputs);
     const std::string command = reader_command(argc, argv);
     gap_table(opt.run.out_dir, command);
     strain_table(opt.run.out_dir, command);
