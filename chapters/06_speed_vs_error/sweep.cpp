@@ -64,14 +64,15 @@ Trajectory run_sampled(Stepper& stepper, double T, long long steps, int samples)
 // [reference]
 // The reference: RK4 with 2^k_ref steps, checked against the 3/8 rule (a different fourth-order method) with
 // twice as many. Their largest sampled difference is its credential: every error plotted must exceed it 100x.
-Trajectory reference(const SceneParams& base, const Config& c, int samples, int k_ref, const Sink& sink,
+Trajectory reference(const SceneParams& base, const Config& c, const SweepPlan& plan, const Sink& sink,
                      ReferenceCheck& check) {
   const Scene scene(with_K_and_D(base, c.K, c.D));
   ForceField f1(scene), f2(scene);
   const auto rk4 = make_stepper("rk4", f1), rule38 = make_stepper("rule38", f2);
+  const int k_ref = plan.k_reference;
   const long long n = 1LL << k_ref;
-  const Trajectory a = run_sampled(*rk4, c.T, n, samples);
-  const Trajectory b = run_sampled(*rule38, c.T, 2 * n, samples);
+  const Trajectory a = run_sampled(*rk4, c.T, n, plan.samples);
+  const Trajectory b = run_sampled(*rule38, c.T, 2 * n, plan.samples);
   double agreement = 0;
   for (std::size_t j = 0; j < a.x.size(); ++j) agreement = std::max(agreement, largest_distance(a.x[j], b.x[j]));
   check = {c.name, n, agreement};
