@@ -111,11 +111,20 @@ void pair_summary(const Options& opt, const std::vector<double>& tolerances, con
   write_table_fragment(opt.run.out_dir + "/controllers.md", table, command);
 }
 
+// How closely the estimate check looks: every pair at rtol = atol = `tol`, and each accepted step taken again in
+// `substeps` steps for the true error.
+struct CheckPlan {
+  double tol = 1e-5;
+  int substeps = 64;
+};
+
 // Each pair's estimate against the true local error of its accepted steps on the cloth: every accepted step is
-// taken again from the same state with `substeps` steps of dopri5's fifth-order row, and the difference from the
-// pair's candidate is measured in the same norm. Steps whose true error exceeds 10 tolerances while the estimate
-// accepted them are steps the estimate did not see.
-void estimate_check(const Options& opt, double tol, int substeps, const std::string& command) {
+// taken again from the same state with plan.substeps steps of dopri5's fifth-order row, and the difference from
+// the pair's candidate is measured in the same norm. Steps whose true error exceeds 10 tolerances while the
+// estimate accepted them are steps the estimate did not see.
+void estimate_check(const Options& opt, const CheckPlan& plan, const std::string& command) {
+  const double tol = plan.tol;
+  const int substeps = plan.substeps;
   const Scene scene(opt.scene);
   ForceField field(scene), reference_field(scene);
   RunSettings run = opt.run;
@@ -169,10 +178,20 @@ void estimate_check(const Options& opt, double tol, int substeps, const std::str
 
 }  // namespace
 
-std::vector<std::string> experiment_outputs() {
-  return {"pairs.md",         "order_conditions.md", "tree_counts.md",     "hard_case.dat",      "hard_case.md",
-          "pairs.dat",        "controllers.md",      "jump_response.dat",  "jump_response.md",   "estimate_check.dat",
-          "estimate_summary.dat", "estimate_check.md"};
+OutputList experiment_outputs() {
+  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment, data = OutputKind::data;
+  return {{"pairs.md", fragment, "the registry's pairs with the residuals of their order conditions"},
+          {"order_conditions.md", fragment, "the order conditions up to order 4"},
+          {"tree_counts.md", fragment, "the number of rooted trees by order"},
+          {"hard_case.dat", figure, "every attempt of dopri5 on the hard case, both controllers"},
+          {"hard_case.md", fragment, "the controllers on the hard case"},
+          {"pairs.dat", data, "every pair with both controllers at every tolerance"},
+          {"controllers.md", fragment, "the controllers' steps and evaluations, pair by pair"},
+          {"jump_response.dat", figure, "each pair's true error and estimate for a jump inside a step"},
+          {"jump_response.md", fragment, "how each pair's estimate answers a jump"},
+          {"estimate_check.dat", figure, "each accepted step's estimate against its true local error"},
+          {"estimate_summary.dat", data, "per pair: accepted steps, blind steps, worst errors"},
+          {"estimate_check.md", fragment, "each pair's estimate against the true local error"}};
 }
 
 void run_experiments(const Options& opt, bool quick, const std::string& command) {
@@ -184,7 +203,7 @@ void run_experiments(const Options& opt, bool quick, const std::string& command)
                command);
   throw_if_interrupted();
   jump_response(opt, command);
-  estimate_check(opt, 1e-5, quick ? 32 : 64, command);
+  estimate_check(opt, {.tol = 1e-5, .substeps = quick ? 32 : 64}, command);
 }
 
 }  // namespace ch08
