@@ -49,7 +49,7 @@ Vector core_engine(ForceField& field, double h, double T) {
 
 // One run in this process (program/timing.hpp: the thread's processor time beside the wall clock).
 Seconds time_in_process(const std::function<void()>& body) {
-  const Timing t = time_runs(body, {1});
+  const Timing t = time_runs(body, {.runs = 1});
   return {t.fastest_wall, t.fastest_cpu};
 }
 

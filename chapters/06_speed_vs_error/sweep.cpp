@@ -183,7 +183,8 @@ std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, 
       const double cpu_start = thread_cpu_seconds(), wall_start = wall_seconds();
       const Rung r = run_rung(rung);
       const double cpu = thread_cpu_seconds() - cpu_start, wall = wall_seconds() - wall_start;
-      WorkPoint& p = points.emplace_back(WorkPoint{c.name, method, r.h, r.tolerance, r.steps, {}, 0, 0, r.counters, false, ""});
+      WorkPoint& p = points.emplace_back(WorkPoint{.config = c.name, .method = method, .h = r.h,
+                                                   .tolerance = r.tolerance, .steps = r.steps, .counters = r.counters});
       if (!r.run.ok) {
         p.dropped = true, p.why = r.run.message;
         record(sink, f, p);
@@ -198,8 +199,9 @@ std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, 
         record(sink, f, p);
         break;
       }
-      p.timing = cpu > plan.max_seconds / 5 ? Timing{cpu, cpu, cpu, wall, wall, 1}
-                                            : time_runs([&] { (void)run_rung(rung); }, {plan.runs});
+      const Timing once{.fastest_cpu = cpu, .median_cpu = cpu, .slowest_cpu = cpu, .fastest_wall = wall,
+                        .median_wall = wall, .runs = 1};
+      p.timing = cpu > plan.max_seconds / 5 ? once : time_runs([&] { (void)run_rung(rung); }, {.runs = plan.runs});
       record(sink, f, p);
       if (p.error < 1e-9 || cpu > plan.max_seconds) break;  // accurate enough, or expensive enough
     }

@@ -74,11 +74,11 @@ struct WorkPoint {
   std::string config, method;
   double h = 0, tolerance = 0;
   long long steps = 0;
-  cloth::Timing timing;             ///< thread CPU seconds of one whole run to T
+  cloth::Timing timing{};           ///< thread CPU seconds of one whole run to T
   double error = 0, error_rms = 0;  ///< the largest particle error at T; the RMS over the sampled times
   cloth::StepCounters counters;
   bool dropped = false;
-  std::string why;
+  std::string why{};
 };
 /// Every method of sweep_methods() on configuration `c`, against `ref` whose credential is `ref_agreement`.
 std::vector<WorkPoint> work_precision(const cloth::SceneParams& base, const Config& c, const Trajectory& ref,

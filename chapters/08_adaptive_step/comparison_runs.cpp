@@ -66,7 +66,7 @@ std::vector<Row> project_runs(const Scene& scene, const LongState& ref, const Co
     const Timing t = time_runs([&] {
       result = adaptive_simulate(rk, plan.run, settings, false);
       throw_if_interrupted();  // after a run a signal cut short
-    }, {plan.runs});
+    }, {.runs = plan.runs});
     if (result.status == RunStatus::ok)
       rows.push_back({series, tableau.name, tol, position_error(result.x, ref), t, result.counters.rhs_evaluations});
   };
@@ -111,7 +111,7 @@ std::vector<Row> odeint_runs(const Scene& scene, const LongState& ref, const Com
                                    rhs(s, d, time);
                                  },
                                  y, 0.0, T, 1e-4);
-    }, {plan.runs});
+    }, {.runs = plan.runs});
     rows.push_back({series, method, tol, position_error(y, ref), t, calls});
   };
   PlainCloth<double> plain(scene);

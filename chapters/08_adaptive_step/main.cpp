@@ -32,7 +32,8 @@ double positive(const std::string& text) {
 // The files one run writes into --out, declared once (program/output_spec.hpp); with --experiments, the studies'
 // (experiments.hpp).
 OutputList single_run_outputs() {
-  return run_output_specs() + OutputList{{"steps.dat", OutputKind::data, "every attempted step: t, h, error, accepted"}};
+  return run_output_specs() +
+         OutputList{{"steps.dat", OutputKind::data, "every attempted step: t, h, error, accepted"}};
 }
 
 // steps.dat: every attempted step.
