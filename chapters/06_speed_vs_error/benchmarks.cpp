@@ -27,7 +27,7 @@ std::vector<std::pair<Vector, Vector>> folded_trajectory(const Scene& scene) {
   RunSettings run;
   run.dt = 1e-3;
   run.t_end = 0.5;
-  const RunResult r = simulate(*rk4, run, false);
+  const RunResult r = simulate(*rk4, run, /*record=*/false);
   std::vector<std::pair<Vector, Vector>> states{{r.x, r.v}};
   MethodSettings settings;
   settings.newton.tolerance = 1e-10;

@@ -21,8 +21,9 @@ namespace {
 // [configs]
 // The horizons: before the sensitivity of (200, 20) explodes (t ~ 0.6 s) and before the first spring of
 // (50, 0) passes near zero length, so that the reference is trustworthy (see the page).
-const std::vector<ch06::Config> configs = {
-    {"K50_D0", 50, 0, 0.25}, {"K200_D20", 200, 20, 0.25}, {"K5000_D20", 5000, 20, 0.25}};
+const std::vector<ch06::Config> configs = {{.name = "K50_D0", .K = 50, .D = 0, .T = 0.25},
+                                           {.name = "K200_D20", .K = 200, .D = 20, .T = 0.25},
+                                           {.name = "K5000_D20", .K = 5000, .D = 20, .T = 0.25}};
 // [configs]
 const std::vector<double> local_error_steps = {2e-3, 1e-3, 5e-4, 2.5e-4};
 // The horizon of the studies of where the scene is hard: past the first folds.

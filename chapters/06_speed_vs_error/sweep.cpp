@@ -27,7 +27,8 @@ const std::vector<std::string>& sweep_methods() {
 
 std::unique_ptr<Stepper> make_sweep_stepper(const std::string& name, ForceField& field) {
   Configuration c = parse_configuration(name);
-  c.settings.newton.treatment = c.jacobian.value_or(default_treatment(c.settings.newton.solver, false));
+  c.settings.newton.treatment =
+      c.jacobian.value_or(default_treatment(c.settings.newton.solver, /*nonsymmetric=*/false));
   return make_stepper(c.method, field, c.settings);
 }
 
@@ -116,7 +117,7 @@ Rung adaptive_rung(const Scene& scene, double T, int j) {
   settings.tolerances = {tolerance, tolerance};
   ForceField field(scene);
   EmbeddedRungeKutta pair(field, embedded_tableau_from_argument("dopri5"));
-  const AdaptiveResult a = adaptive_simulate(pair, run, settings, false);
+  const AdaptiveResult a = adaptive_simulate(pair, run, settings, /*record=*/false);
   Rung r;
   r.run.x = {a.x};
   r.run.ok = a.status == RunStatus::ok;

@@ -64,7 +64,7 @@ std::vector<Row> project_runs(const Scene& scene, const LongState& ref, const Co
     EmbeddedRungeKutta rk(field, tableau);
     AdaptiveResult result;
     const Timing t = time_runs([&] {
-      result = adaptive_simulate(rk, plan.run, settings, false);
+      result = adaptive_simulate(rk, plan.run, settings, /*record=*/false);
       throw_if_interrupted();  // after a run a signal cut short
     }, {.runs = plan.runs});
     if (result.status == RunStatus::ok)

@@ -60,7 +60,8 @@ void hard_case(const Options& opt, double tol, const std::string& command) {
     long long rejected_near_zero = 0;
     double first_short = -1;
     const AdaptiveResult r = adaptive_simulate(
-        rk, run, with_tolerance(tol, controller), false, [&](const StepAttempt& a, const Vector& x, const Vector&) {
+        rk, run, with_tolerance(tol, controller), /*record=*/false,
+        [&](const StepAttempt& a, const Vector& x, const Vector&) {
           const double shortest = shortest_spring(scene, x, all);
           if (!a.accepted && shortest < 0.1) ++rejected_near_zero;
           if (a.accepted && a.h < 1e-3 && first_short < 0) first_short = a.t;
@@ -95,7 +96,7 @@ void pair_summary(const Options& opt, const std::vector<double>& tolerances, con
       for (const ControllerKind controller : {ControllerKind::pi, ControllerKind::elementary}) {
         const ButcherTableau& t = *row->tableau;
         EmbeddedRungeKutta rk(field, t);
-        const AdaptiveResult r = adaptive_simulate(rk, run, with_tolerance(tol, controller), false);
+        const AdaptiveResult r = adaptive_simulate(rk, run, with_tolerance(tol, controller), /*record=*/false);
         throw_if_interrupted();
         std::fprintf(out.get(), "%s %s %g %lld %lld %lld %.3e %.3e %s\n", t.name.c_str(), controller_name(controller),
                      tol, r.accepted, r.rejected, r.counters.rhs_evaluations, r.smallest_step, r.largest_step,
@@ -146,7 +147,7 @@ void estimate_check(const Options& opt, const CheckPlan& plan, const std::string
     Vector xr(scene.dof_count()), vr(scene.dof_count());
     long long accepted = 0, blind = 0, blind_near_zero = 0;
     double worst = 0, worst_ratio = 0;
-    adaptive_simulate(rk, run, with_tolerance(tol, ControllerKind::pi), false,
+    adaptive_simulate(rk, run, with_tolerance(tol, ControllerKind::pi), /*record=*/false,
                       [&](const StepAttempt& a, const Vector& x, const Vector& v) {
                         if (!a.accepted) return;
                         xr = x, vr = v;
