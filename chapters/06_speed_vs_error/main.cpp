@@ -26,7 +26,7 @@ const std::vector<ch06::Config> configs = {{.name = "K50_D0", .K = 50, .D = 0, .
                                            {.name = "K5000_D20", .K = 5000, .D = 20, .T = 0.25}};
 // [configs]
 const std::vector<double> local_error_steps = {2e-3, 1e-3, 5e-4, 2.5e-4};
-// The horizon of the studies of where the scene is hard: past the first folds.
+// The horizon of the studies of where the scene is hard: T = 1 s, through the first folds and their jumps.
 const double hard_horizon = 1.0;
 
 // The files the program writes into --out, declared once (program/output_spec.hpp): the micro-benchmarks' (all
