@@ -1,7 +1,7 @@
 // Chapter 10's map: the peers' plain force loop against the book's forces and definite Newton matrix (an
 // independent implementation of the same model), and the map's rules read from hand-made parts: the fastest run
 // that reached a level, the prediction from a ladder's last two rungs, and a level the rest state meets.
-#include "../chapters/10_real_cloth/plain_fabric.hpp"
+#include "../chapters/06_speed_vs_error/plain_fabric.hpp"
 #include "program_runner.hpp"
 
 #include "model/force_field.hpp"
@@ -25,7 +25,7 @@ TEST_CASE("the plain fabric's accelerations and definite Jacobian are the book's
   p.initial_swing = -4;
   const Scene scene(p);
   ForceField field(scene);
-  ch10::PlainFabric plain(6, 6, 0.05, p.stiffness, p.damping, p.mass, p.gravity, 0, true, p.initial_swing);
+  ch06::PlainFabric plain(6, 6, 0.05, p.stiffness, p.damping, p.mass, p.gravity, 0, true, p.initial_swing);
   const int P = scene.particle_count(), n = scene.dof_count();
   // A moving state 1 cm off rest, enough to compress some springs (the definite rule's clamp then acts).
   std::vector<double> y = plain.initial_state();

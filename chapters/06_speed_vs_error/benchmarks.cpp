@@ -27,7 +27,7 @@ std::vector<std::pair<Vector, Vector>> folded_trajectory(const Scene& scene) {
   RunSettings run;
   run.dt = 1e-3;
   run.t_end = 0.5;
-  const RunResult r = simulate(*rk4, run, false);
+  const RunResult r = simulate(*rk4, run, /*record=*/false);
   std::vector<std::pair<Vector, Vector>> states{{r.x, r.v}};
   MethodSettings settings;
   settings.newton.tolerance = 1e-10;
@@ -50,24 +50,26 @@ void time_forces_and_refills(ForceField& field, const Vector& x, const Vector& v
                              std::vector<Benchmark>& out) {
   Vector f(field.dof_count());
   const auto springs = static_cast<double>(field.scene().springs().size());
-  out.push_back(timed_benchmark("force_evaluation", time_runs([&] { field.forces(x, v, f); }, {runs, 10, 200}), springs,
-                     "springs"));
+  const Timing force = time_runs([&] { field.forces(x, v, f); }, {.runs = runs, .warmup = 10, .repeat = 200});
+  out.push_back(timed_benchmark("force_evaluation", force, springs, "springs"));
   const auto nnz = static_cast<double>(A.nonZeros());
-  out.push_back(timed_benchmark("newton_matrix_refill_symmetric",
-                     time_runs([&] { field.newton_matrix(x, v, h, StiffnessTreatment::symmetric, A); }, {runs, 5, 20}),
-                     nnz, "nonzeros"));
-  out.push_back(timed_benchmark("newton_matrix_refill_definite",
-                     time_runs([&] { field.newton_matrix(x, v, h, StiffnessTreatment::definite, A); }, {runs, 5, 20}),
-                     nnz, "nonzeros"));
+  const TimingPlan refills{.runs = runs, .warmup = 5, .repeat = 20};
+  const Timing symmetric =
+      time_runs([&] { field.newton_matrix(x, v, h, StiffnessTreatment::symmetric, A); }, refills);
+  out.push_back(timed_benchmark("newton_matrix_refill_symmetric", symmetric, nnz, "nonzeros"));
+  const Timing definite = time_runs([&] { field.newton_matrix(x, v, h, StiffnessTreatment::definite, A); }, refills);
+  out.push_back(timed_benchmark("newton_matrix_refill_definite", definite, nnz, "nonzeros"));
 }
 
 void time_conjugate_gradients(ForceField& field, const States& states, SparseMatrix& A, int runs,
                               std::vector<Benchmark>& out) {
   const int n = field.dof_count();
+  const double cg_tolerance = 1e-8;  // the relative residual both solvers stop at (the benchmarks' names say 1e-8)
+  const int cg_max_iterations = 1000;
   // Eigen's CG on the first Newton system of a step, cold (from 0) and warm (from the previous step's update).
   Vector fx(n), r(n), dv_prev(n), dv(n);
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
-  cg.setTolerance(1e-8);
+  cg.setTolerance(cg_tolerance);
   const auto system = [&](const Vector& xs, const Vector& vs) {
     field.newton_matrix(xs + h * vs, vs, h, StiffnessTreatment::definite, A);
     field.forces(xs + h * vs, vs, fx);
@@ -77,26 +79,27 @@ void time_conjugate_gradients(ForceField& field, const States& states, SparseMat
   system(states[0].first, states[0].second);
   dv_prev = cg.solve(r);
   system(states[1].first, states[1].second);
-  const Timing cold = time_runs([&] { dv = cg.solve(r); }, {runs, 2, 5});
+  const Timing cold = time_runs([&] { dv = cg.solve(r); }, {.runs = runs, .warmup = 2, .repeat = 5});
   const auto cold_it = static_cast<double>(cg.iterations());
-  const Timing warm = time_runs([&] { dv = cg.solveWithGuess(r, dv_prev); }, {runs, 2, 5});
+  const Timing warm =
+      time_runs([&] { dv = cg.solveWithGuess(r, dv_prev); }, {.runs = runs, .warmup = 2, .repeat = 5});
   const auto warm_it = static_cast<double>(cg.iterations());
   out.push_back(timed_benchmark("cg_eigen_jacobi_cold_1e-8", cold, cold_it, "iterations"));
   out.push_back(timed_benchmark("cg_eigen_jacobi_warm_1e-8", warm, warm_it, "iterations"));
   // The same two solves with the core's allocation-free block-Jacobi PCG (integrators/pcg.hpp).
   BlockJacobiPCG pcg(n);
-  const Timing precondition = time_runs([&] { pcg.compute(A); }, {runs, 2, 20});
+  const Timing precondition = time_runs([&] { pcg.compute(A); }, {.runs = runs, .warmup = 2, .repeat = 20});
   const Timing pcg_cold = time_runs(
       [&] {
         dv.setZero();
-        pcg.solve(A, r, dv, 1e-8, 1000);
-      }, {runs, 2, 5});
+        pcg.solve(A, r, dv, cg_tolerance, cg_max_iterations);
+      }, {.runs = runs, .warmup = 2, .repeat = 5});
   const auto pcg_cold_it = static_cast<double>(pcg.iterations());
   const Timing pcg_warm = time_runs(
       [&] {
         dv = dv_prev;
-        pcg.solve(A, r, dv, 1e-8, 1000);
-      }, {runs, 2, 5});
+        pcg.solve(A, r, dv, cg_tolerance, cg_max_iterations);
+      }, {.runs = runs, .warmup = 2, .repeat = 5});
   const auto pcg_warm_it = static_cast<double>(pcg.iterations());
   out.push_back(timed_benchmark("pcg_block_jacobi_setup", precondition));
   out.push_back(timed_benchmark("pcg_block_jacobi_cold_1e-8", pcg_cold, pcg_cold_it, "iterations"));
@@ -128,7 +131,7 @@ void time_newton_iterations(const Scene& scene, const States& states, int runs, 
     };
     for (std::size_t k = 0; k < states.size(); ++k) next();
     ie.reset_counters();
-    const Timing t = time_runs(next, {runs, 0, static_cast<int>(states.size()) - 1});
+    const Timing t = time_runs(next, {.runs = runs, .repeat = static_cast<int>(states.size()) - 1});
     out.push_back(timed_benchmark(name, t,
                        static_cast<double>(ie.counters().cg_iterations) / static_cast<double>(ie.counters().steps),
                        "cg_iterations_per_solve"));
@@ -155,7 +158,7 @@ void time_runge_kutta_steps(ForceField& field, const Vector& x, const Vector& v,
           xs = x;
           vs = v;
           s.step(1e-4, xs, vs);
-        }, {runs, 5, 50});
+        }, {.runs = runs, .warmup = 5, .repeat = 50});
   };
   // Interleaved, twice each, so that a slow spell of the machine favours neither; the faster of the two kept.
   const Timing g1 = time_step(*generic), h1 = time_step(hand), g2 = time_step(*generic), h2 = time_step(hand);

@@ -21,7 +21,7 @@ namespace {
 template <class Solver>
 Benchmark factorization(const char* name, Solver& solver, const SparseMatrix& A, int runs) {
   solver.analyzePattern(A);  // the ordering and the symbolic factorization: once per scene, not timed
-  return timed_benchmark(name, time_runs([&] { solver.factorize(A); }, {runs, 2}));
+  return timed_benchmark(name, time_runs([&] { solver.factorize(A); }, {.runs = runs, .warmup = 2}));
 }
 
 }  // namespace
@@ -33,7 +33,7 @@ void time_factorizations(const SparseMatrix& A, int runs, std::vector<Benchmark>
   for (const auto symmetry : {BlockLDU::Symmetry::symmetric, BlockLDU::Symmetry::general}) {
     BlockLDU block;
     block.analyze(A, symmetry);
-    const Timing t = time_runs([&] { block.factorize(A); }, {runs, 2, 5});
+    const Timing t = time_runs([&] { block.factorize(A); }, {.runs = runs, .warmup = 2, .repeat = 5});
     const bool symmetric = symmetry == BlockLDU::Symmetry::symmetric;
     out.push_back(timed_benchmark(symmetric ? "factorize_block_ldlt_amd" : "factorize_block_ldu_amd", t,
                        block.factorization_flops(), "multiply_adds"));

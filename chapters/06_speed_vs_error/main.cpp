@@ -9,6 +9,7 @@
 #include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
+#include "program/output_spec.hpp"
 
 #include <string>
 #include <vector>
@@ -20,25 +21,49 @@ namespace {
 // [configs]
 // The horizons: before the sensitivity of (200, 20) explodes (t ~ 0.6 s) and before the first spring of
 // (50, 0) passes near zero length, so that the reference is trustworthy (see the page).
-const std::vector<ch06::Config> configs = {
-    {"K50_D0", 50, 0, 0.25}, {"K200_D20", 200, 20, 0.25}, {"K5000_D20", 5000, 20, 0.25}};
+const std::vector<ch06::Config> configs = {{.name = "K50_D0", .K = 50, .D = 0, .T = 0.25},
+                                           {.name = "K200_D20", .K = 200, .D = 20, .T = 0.25},
+                                           {.name = "K5000_D20", .K = 5000, .D = 20, .T = 0.25}};
 // [configs]
 const std::vector<double> local_error_steps = {2e-3, 1e-3, 5e-4, 2.5e-4};
+// The horizon of the studies of where the scene is hard: T = 1 s, through the first folds and their jumps.
+const double hard_horizon = 1.0;
 
-// The files the program writes into --out, in one list: the micro-benchmarks' (all that --bench-only writes),
-// then every study's data and the page's fragments.
-const std::vector<std::string> benchmark_outputs = {"benchmarks.dat", "benchmarks.md", "factorizations.md",
-                                                    "factorization_speedup.md"};
-std::vector<std::string> study_outputs() {
-  std::vector<std::string> names = {
-      "speed_vs_error.dat", "near_zero.dat", "orders.dat", "sensitivity.dat", "scaling.dat",
-      "near_zero.md", "local_error.md", "jumps.md", "observed_orders.md", "sensitivity.md", "reference.md",
-      "fastest.md", "fastest_summary.md", "dropped.md", "effective_orders.md", "implicit_variants.md",
-      "stiff_pick.md", "scaling.md"};
-  for (const double h : local_error_steps) names.push_back(ch06::local_error_name(h));
-  for (const ch06::Config& c : configs) names.push_back("wp_" + c.name + ".dat");
-  names.insert(names.end(), benchmark_outputs.begin(), benchmark_outputs.end());
-  return names;
+// The files the program writes into --out, declared once (program/output_spec.hpp): the micro-benchmarks' (all
+// that --bench-only writes), then every study's data and the page's fragments.
+OutputList benchmark_outputs() {
+  return {{"benchmarks.dat", OutputKind::figure_input, "every micro-benchmark: median wall and CPU time, count"},
+          {"benchmarks.md", OutputKind::fragment, "the core's micro-benchmarks"},
+          {"factorizations.md", OutputKind::fragment, "every factorization of the same Newton matrix"},
+          {"factorization_speedup.md", OutputKind::fragment, "how much faster the block factorizations are"}};
+}
+OutputList study_outputs() {
+  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment;
+  OutputList files = {
+      {"speed_vs_error.dat", OutputKind::data, "every run of every study: step, time, errors, work counters"},
+      {"near_zero.dat", figure, "the shortest spring's l / L0 over time"},
+      {"orders.dat", figure, "step halvings: difference and observed order, per method and horizon"},
+      {"sensitivity.dat", figure, "a perturbation's amplification over time, per configuration"},
+      {"scaling.dat", figure, "the cost of a step against the grid size, per method"},
+      {"near_zero.md", fragment, "when the shortest spring first comes near zero length"},
+      {"local_error.md", fragment, "RK4's local error beside the jump model"},
+      {"jumps.md", fragment, "the steps with a jump and their errors"},
+      {"observed_orders.md", fragment, "the observed orders by step halving"},
+      {"sensitivity.md", fragment, "how much each configuration amplifies a perturbation"},
+      {"reference.md", fragment, "each reference's credential"},
+      {"fastest.md", fragment, "the fastest method at each error level"},
+      {"fastest_summary.md", fragment, "the fastest methods, in a sentence"},
+      {"dropped.md", fragment, "the runs left out of the figures, and why"},
+      {"effective_orders.md", fragment, "each method's order fitted on the sweep"},
+      {"implicit_variants.md", fragment, "implicit Euler's variants side by side"},
+      {"stiff_pick.md", fragment, "the pick for the stiff cloth"},
+      {"scaling.md", fragment, "the cost of a step per grid, with fitted exponents"}};
+  for (const double h : local_error_steps)
+    files.push_back({ch06::local_error_name(h), h == 1e-3 ? figure : OutputKind::data,  // the figure draws h = 1 ms
+                     "RK4's local error per step along the (50, 0) trajectory"});
+  for (const ch06::Config& c : configs)
+    files.push_back({"wp_" + c.name + ".dat", figure, "the work-precision points of " + c.name});
+  return files + benchmark_outputs();
 }
 
 void write_benchmarks(const std::string& dir, const SceneParams& scene, const std::vector<ch06::Benchmark>& bench) {
@@ -63,6 +88,7 @@ int main(int argc, char** argv) {
   bool quick = false, bench_only = false;
   cli.add_switch("--quick", "a reduced sweep for the plots target (well under a minute)", [&] { quick = true; });
   cli.add_switch("--bench-only", "only the micro-benchmarks", [&] { bench_only = true; });
+  cli.declare_outputs([&](const Options&) { return bench_only ? benchmark_outputs() : study_outputs(); });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     const SceneParams& scene = opt.scene;
@@ -71,7 +97,7 @@ int main(int argc, char** argv) {
     require_memory(static_cast<double>(particles) * implicit_bytes_per_particle(particles), "--grid",
                    "a run of the implicit methods on a " + std::to_string(scene.grid.M) + "x" +
                        std::to_string(scene.grid.N) + " grid", ": expected a smaller grid");
-    prepare_outputs(opt.run.out_dir, bench_only ? benchmark_outputs : study_outputs(), study_outputs());
+    prepare_declared_outputs(opt.run.out_dir, bench_only ? benchmark_outputs() : study_outputs(), study_outputs());
     const std::string dir = opt.run.out_dir, command = reader_command(argc, argv);
 
     // 1. What the core's pieces cost: a force evaluation, a factorization, a CG solve, a step.
@@ -86,28 +112,30 @@ int main(int argc, char** argv) {
 
     // 2. Where the scene is hard: springs near zero length, the order they cost, and sensitivity.
     const double fine = quick ? 5e-4 : 5e-5;
-    ch06::write_near_zero_fragment(dir, ch06::near_zero_springs(scene, 1.0, fine, sink));
+    ch06::write_near_zero_fragment(dir, ch06::near_zero_springs(scene, hard_horizon, fine, sink));
     std::vector<ch06::LocalError> local_errors;
-    for (const double h : local_error_steps) local_errors.push_back(ch06::local_error_along_trajectory(scene, 1.0, h, sink));
-    const auto orders = ch06::observed_orders(scene, {0.25, 1.0}, 6, quick ? 11 : 15, sink);
-    ch06::write_order_loss_fragments(dir, local_errors, orders, command);
+    for (const double h : local_error_steps)
+      local_errors.push_back(ch06::local_error_along_trajectory(scene, hard_horizon, h, sink));
+    const ch06::OrderLadder halvings{.horizons = {0.25, hard_horizon}, .k_min = 6, .k_max = quick ? 11 : 15};
+    ch06::write_order_loss_fragments(dir, local_errors, ch06::observed_orders(scene, halvings, sink), command);
     ch06::write_sensitivity_fragment(dir, ch06::sensitivity(scene, configs, fine, sink), configs, command);
 
     // 3. A reference with its credentials, then every method against it on each cloth.
-    const ch06::SweepPlan plan{16, 4, quick ? 10 : 16, 2, 10, quick ? 0.1 : 4.0, 5};
+    const ch06::SweepPlan plan{.k_reference = quick ? 12 : 15, .samples = 16, .k_min = 4, .k_max = quick ? 10 : 16,
+                               .tolerance_min = 2, .tolerance_max = 10, .max_seconds = quick ? 0.1 : 4.0, .runs = 5};
     std::vector<ch06::ReferenceCheck> references;
     std::vector<ch06::WorkPoint> work;
     for (const ch06::Config& c : configs) {
       ch06::ReferenceCheck& check = references.emplace_back();
-      const ch06::Trajectory ref = ch06::reference(scene, c, plan.samples, quick ? 12 : 15, sink, check);
+      const ch06::Trajectory ref = ch06::reference(scene, c, plan, sink, check);
       const auto points = ch06::work_precision(scene, c, ref, check.agreement, plan, sink);
       work.insert(work.end(), points.begin(), points.end());
     }
     ch06::write_sweep_fragments(dir, references, work, configs, command);
 
     // 4. The cost of a step against the grid size.
-    const ch06::ScalingPlan growth{quick ? std::vector<int>{20, 40} : std::vector<int>{20, 40, 80, 160, 320},
-                                   quick ? 3 : 5, quick ? 1.0 : 2.0};
+    const ch06::ScalingPlan growth{.sizes = quick ? std::vector<int>{20, 40} : std::vector<int>{20, 40, 80, 160, 320},
+                                   .runs = quick ? 3 : 5, .max_step_seconds = quick ? 1.0 : 2.0};
     ch06::write_scaling_fragment(dir, ch06::scaling(scene, growth, sink), command);
     table.commit();
     return 0;

@@ -79,21 +79,20 @@ LocalError local_error_along_trajectory(const SceneParams& base, double T, doubl
 // [observed_orders]
 // Observed order without a reference: with d_k = max over particles |x_{h_k}(T) - x_{h_k / 2}(T)| and
 // h_k = T / 2^k, d_k ~ C h_k^p, so p ~ log2(d_k / d_{k+1}) wherever the error is in its asymptotic regime.
-std::vector<ObservedOrder> observed_orders(const SceneParams& base, const std::vector<double>& horizons, int k_min,
-                                           int k_max, const Sink& sink) {
+std::vector<ObservedOrder> observed_orders(const SceneParams& base, const OrderLadder& ladder, const Sink& sink) {
   const Scene scene(base);
   std::vector<ObservedOrder> out;
   const auto file = open(sink, "orders.dat",
                       "# method T h difference_to_half_step observed_order  (blocks by method and T)");
   std::FILE* const f = file->get();
   for (const char* method : {"explicit_euler", "symplectic_euler", "heun", "rk4"}) {
-    for (const double T : horizons) {
+    for (const double T : ladder.horizons) {
       std::fprintf(f, "# %s T = %g\n", method, T);
       ForceField field(scene);
       auto stepper = make_stepper(method, field);
       Vector previous;
       double previous_difference = 0;
-      for (int k = k_min; k <= k_max + 1; ++k) {
+      for (int k = ladder.k_min; k <= ladder.k_max + 1; ++k) {
         const Trajectory run = run_sampled(*stepper, T, 1LL << k, 1);
         if (!run.ok) {  // diverged: no difference to take, and the next one has no predecessor
           previous.resize(0);

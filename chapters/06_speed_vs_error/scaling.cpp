@@ -69,12 +69,15 @@ std::vector<ScalingPoint> scaling(const SceneParams& base, const ScalingPlan& pl
             x = x0, v = v0;
             for (int k = 0; k < steps; ++k) stepper->step(h, x, v);
           },
-          {plan.runs, 1});
+          {.runs = plan.runs, .warmup = 1});
       // Per step: the timed runs', and the mean over every step taken, which the parts of an implicit step are.
       const StepCounters& n = stepper->counters();
       const double per_step = 1.0 / static_cast<double>(n.steps);
-      ScalingPoint& point = points.emplace_back(
-          ScalingPoint{method, size, scene.springs().size(), t.median_wall / steps, t.fastest_cpu / steps});
+      ScalingPoint& point = points.emplace_back(ScalingPoint{.method = method,
+                                                             .size = size,
+                                                             .springs = scene.springs().size(),
+                                                             .wall_per_step = t.median_wall / steps,
+                                                             .cpu_per_step = t.fastest_cpu / steps});
       point.mean_wall_per_step = (wall_seconds() - start) * per_step;
       if (implicit) {
         point.assembly_per_step = implicit->timing().assembly * per_step;

@@ -56,8 +56,13 @@ struct ObservedOrder {
   std::string method;
   double T = 0, h = 0, difference = 0, order = 0;
 };
-std::vector<ObservedOrder> observed_orders(const cloth::SceneParams& base, const std::vector<double>& horizons,
-                                           int k_min, int k_max, const Sink& sink);
+/// The step halvings of the observed orders: h = T / 2^k for k = k_min .. k_max, at each horizon T.
+struct OrderLadder {
+  std::vector<double> horizons;  ///< T [s]
+  int k_min = 6, k_max = 15;
+};
+std::vector<ObservedOrder> observed_orders(const cloth::SceneParams& base, const OrderLadder& ladder,
+                                           const Sink& sink);
 /// jumps.md, local_error.md and observed_orders.md.
 void write_order_loss_fragments(const std::string& dir, const std::vector<LocalError>& local_errors,
                                 const std::vector<ObservedOrder>& orders, const std::string& command);

@@ -27,7 +27,8 @@ const std::vector<std::string>& sweep_methods() {
 
 std::unique_ptr<Stepper> make_sweep_stepper(const std::string& name, ForceField& field) {
   Configuration c = parse_configuration(name);
-  c.settings.newton.treatment = c.jacobian.value_or(default_treatment(c.settings.newton.solver, false));
+  c.settings.newton.treatment =
+      c.jacobian.value_or(default_treatment(c.settings.newton.solver, /*nonsymmetric=*/false));
   return make_stepper(c.method, field, c.settings);
 }
 
@@ -64,14 +65,15 @@ Trajectory run_sampled(Stepper& stepper, double T, long long steps, int samples)
 // [reference]
 // The reference: RK4 with 2^k_ref steps, checked against the 3/8 rule (a different fourth-order method) with
 // twice as many. Their largest sampled difference is its credential: every error plotted must exceed it 100x.
-Trajectory reference(const SceneParams& base, const Config& c, int samples, int k_ref, const Sink& sink,
+Trajectory reference(const SceneParams& base, const Config& c, const SweepPlan& plan, const Sink& sink,
                      ReferenceCheck& check) {
   const Scene scene(with_K_and_D(base, c.K, c.D));
   ForceField f1(scene), f2(scene);
   const auto rk4 = make_stepper("rk4", f1), rule38 = make_stepper("rule38", f2);
+  const int k_ref = plan.k_reference;
   const long long n = 1LL << k_ref;
-  const Trajectory a = run_sampled(*rk4, c.T, n, samples);
-  const Trajectory b = run_sampled(*rule38, c.T, 2 * n, samples);
+  const Trajectory a = run_sampled(*rk4, c.T, n, plan.samples);
+  const Trajectory b = run_sampled(*rule38, c.T, 2 * n, plan.samples);
   double agreement = 0;
   for (std::size_t j = 0; j < a.x.size(); ++j) agreement = std::max(agreement, largest_distance(a.x[j], b.x[j]));
   check = {c.name, n, agreement};
@@ -115,7 +117,7 @@ Rung adaptive_rung(const Scene& scene, double T, int j) {
   settings.tolerances = {tolerance, tolerance};
   ForceField field(scene);
   EmbeddedRungeKutta pair(field, embedded_tableau_from_argument("dopri5"));
-  const AdaptiveResult a = adaptive_simulate(pair, run, settings, false);
+  const AdaptiveResult a = adaptive_simulate(pair, run, settings, /*record=*/false);
   Rung r;
   r.run.x = {a.x};
   r.run.ok = a.status == RunStatus::ok;
@@ -182,7 +184,8 @@ std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, 
       const double cpu_start = thread_cpu_seconds(), wall_start = wall_seconds();
       const Rung r = run_rung(rung);
       const double cpu = thread_cpu_seconds() - cpu_start, wall = wall_seconds() - wall_start;
-      WorkPoint& p = points.emplace_back(WorkPoint{c.name, method, r.h, r.tolerance, r.steps, {}, 0, 0, r.counters, false, ""});
+      WorkPoint& p = points.emplace_back(WorkPoint{.config = c.name, .method = method, .h = r.h,
+                                                   .tolerance = r.tolerance, .steps = r.steps, .counters = r.counters});
       if (!r.run.ok) {
         p.dropped = true, p.why = r.run.message;
         record(sink, f, p);
@@ -197,8 +200,9 @@ std::vector<WorkPoint> work_precision(const SceneParams& base, const Config& c, 
         record(sink, f, p);
         break;
       }
-      p.timing = cpu > plan.max_seconds / 5 ? Timing{cpu, cpu, cpu, wall, wall, 1}
-                                            : time_runs([&] { (void)run_rung(rung); }, {plan.runs});
+      const Timing once{.fastest_cpu = cpu, .median_cpu = cpu, .slowest_cpu = cpu, .fastest_wall = wall,
+                        .median_wall = wall, .runs = 1};
+      p.timing = cpu > plan.max_seconds / 5 ? once : time_runs([&] { (void)run_rung(rung); }, {.runs = plan.runs});
       record(sink, f, p);
       if (p.error < 1e-9 || cpu > plan.max_seconds) break;  // accurate enough, or expensive enough
     }

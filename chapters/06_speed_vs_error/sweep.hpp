@@ -54,12 +54,9 @@ struct ReferenceCheck {
   long long steps = 0;
   double agreement = 0;  ///< largest sampled distance between the two [m]
 };
-/// Returns the reference trajectory at `samples` times; `check` receives its credentials.
-Trajectory reference(const cloth::SceneParams& base, const Config& c, int samples, int k_ref, const Sink& sink,
-                     ReferenceCheck& check);
-
 /// How far down its ladder each method goes, and how each run is timed.
 struct SweepPlan {
+  int k_reference = 15;      ///< the reference's steps: RK4 with h = T / 2^k_reference, the 3/8 rule with h / 2
   int samples = 16;          ///< sampled times for the RMS error (the fixed steps are 2^k, a multiple of it)
   int k_min = 4, k_max = 16;  ///< fixed steps h = T / 2^k
   int tolerance_min = 2, tolerance_max = 10;  ///< the adaptive pair's rtol = atol = 10^-j
@@ -67,17 +64,21 @@ struct SweepPlan {
   int runs = 5;              ///< timed runs of each point (time_runs: fastest, median, slowest)
 };
 
+/// The reference trajectory at plan.samples times; `check` receives its credentials.
+Trajectory reference(const cloth::SceneParams& base, const Config& c, const SweepPlan& plan, const Sink& sink,
+                     ReferenceCheck& check);
+
 /// One run of the sweep: a fixed step h = T / steps, or (dopri5) one tolerance, with h its mean step. A run that
 /// failed or whose error is within 100x of the reference's agreement is `dropped`, `why` says why.
 struct WorkPoint {
   std::string config, method;
   double h = 0, tolerance = 0;
   long long steps = 0;
-  cloth::Timing timing;             ///< thread CPU seconds of one whole run to T
+  cloth::Timing timing{};           ///< thread CPU seconds of one whole run to T
   double error = 0, error_rms = 0;  ///< the largest particle error at T; the RMS over the sampled times
   cloth::StepCounters counters;
   bool dropped = false;
-  std::string why;
+  std::string why{};
 };
 /// Every method of sweep_methods() on configuration `c`, against `ref` whose credential is `ref_agreement`.
 std::vector<WorkPoint> work_precision(const cloth::SceneParams& base, const Config& c, const Trajectory& ref,

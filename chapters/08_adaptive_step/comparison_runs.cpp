@@ -30,8 +30,9 @@ LongState long_double_run(const Scene& scene, double T, double tol, long long& s
   };
   LongState y = PlainCloth<long double>::initial_state(scene);
   const auto tolerance = static_cast<long double>(tol);
-  steps = static_cast<long long>(odeint::integrate_adaptive(odeint::make_controlled<Stepper>(tolerance, tolerance),
-                                                            rhs, y, 0.0L, static_cast<long double>(T), 1e-4L));
+  const long double t0 = 0, t1 = T, first_step = 1e-4L;
+  steps = static_cast<long long>(
+      odeint::integrate_adaptive(odeint::make_controlled<Stepper>(tolerance, tolerance), rhs, y, t0, t1, first_step));
   return y;
 }
 // [reference]
@@ -64,9 +65,9 @@ std::vector<Row> project_runs(const Scene& scene, const LongState& ref, const Co
     EmbeddedRungeKutta rk(field, tableau);
     AdaptiveResult result;
     const Timing t = time_runs([&] {
-      result = adaptive_simulate(rk, plan.run, settings, false);
+      result = adaptive_simulate(rk, plan.run, settings, /*record=*/false);
       throw_if_interrupted();  // after a run a signal cut short
-    }, {plan.runs});
+    }, {.runs = plan.runs});
     if (result.status == RunStatus::ok)
       rows.push_back({series, tableau.name, tol, position_error(result.x, ref), t, result.counters.rhs_evaluations});
   };
@@ -98,6 +99,7 @@ std::vector<Row> odeint_runs(const Scene& scene, const LongState& ref, const Com
   // [odeint_runs]
   // Boost.Odeint as its documentation shows it: integrate_adaptive with a controlled stepper made by
   // make_controlled(atol, rtol), from a first step of 1e-4 s (odeint adapts it from there).
+  const double t0 = 0, first_step = 1e-4;
   const auto odeint_run = [&](const std::string& method, const std::string& series, double tol, auto stepper,
                               auto&& rhs) {
     State y;
@@ -110,8 +112,8 @@ std::vector<Row> odeint_runs(const Scene& scene, const LongState& ref, const Com
                                    ++calls;
                                    rhs(s, d, time);
                                  },
-                                 y, 0.0, T, 1e-4);
-    }, {plan.runs});
+                                 y, t0, T, first_step);
+    }, {.runs = plan.runs});
     rows.push_back({series, method, tol, position_error(y, ref), t, calls});
   };
   PlainCloth<double> plain(scene);

@@ -60,7 +60,8 @@ void hard_case(const Options& opt, double tol, const std::string& command) {
     long long rejected_near_zero = 0;
     double first_short = -1;
     const AdaptiveResult r = adaptive_simulate(
-        rk, run, with_tolerance(tol, controller), false, [&](const StepAttempt& a, const Vector& x, const Vector&) {
+        rk, run, with_tolerance(tol, controller), /*record=*/false,
+        [&](const StepAttempt& a, const Vector& x, const Vector&) {
           const double shortest = shortest_spring(scene, x, all);
           if (!a.accepted && shortest < 0.1) ++rejected_near_zero;
           if (a.accepted && a.h < 1e-3 && first_short < 0) first_short = a.t;
@@ -95,7 +96,7 @@ void pair_summary(const Options& opt, const std::vector<double>& tolerances, con
       for (const ControllerKind controller : {ControllerKind::pi, ControllerKind::elementary}) {
         const ButcherTableau& t = *row->tableau;
         EmbeddedRungeKutta rk(field, t);
-        const AdaptiveResult r = adaptive_simulate(rk, run, with_tolerance(tol, controller), false);
+        const AdaptiveResult r = adaptive_simulate(rk, run, with_tolerance(tol, controller), /*record=*/false);
         throw_if_interrupted();
         std::fprintf(out.get(), "%s %s %g %lld %lld %lld %.3e %.3e %s\n", t.name.c_str(), controller_name(controller),
                      tol, r.accepted, r.rejected, r.counters.rhs_evaluations, r.smallest_step, r.largest_step,
@@ -111,11 +112,20 @@ void pair_summary(const Options& opt, const std::vector<double>& tolerances, con
   write_table_fragment(opt.run.out_dir + "/controllers.md", table, command);
 }
 
+// How closely the estimate check looks: every pair at rtol = atol = `tol`, and each accepted step taken again in
+// `substeps` steps for the true error.
+struct CheckPlan {
+  double tol = 1e-5;
+  int substeps = 64;
+};
+
 // Each pair's estimate against the true local error of its accepted steps on the cloth: every accepted step is
-// taken again from the same state with `substeps` steps of dopri5's fifth-order row, and the difference from the
-// pair's candidate is measured in the same norm. Steps whose true error exceeds 10 tolerances while the estimate
-// accepted them are steps the estimate did not see.
-void estimate_check(const Options& opt, double tol, int substeps, const std::string& command) {
+// taken again from the same state with plan.substeps steps of dopri5's fifth-order row, and the difference from
+// the pair's candidate is measured in the same norm. Steps whose true error exceeds 10 tolerances while the
+// estimate accepted them are steps the estimate did not see.
+void estimate_check(const Options& opt, const CheckPlan& plan, const std::string& command) {
+  const double tol = plan.tol;
+  const int substeps = plan.substeps;
   const Scene scene(opt.scene);
   ForceField field(scene), reference_field(scene);
   RunSettings run = opt.run;
@@ -137,7 +147,7 @@ void estimate_check(const Options& opt, double tol, int substeps, const std::str
     Vector xr(scene.dof_count()), vr(scene.dof_count());
     long long accepted = 0, blind = 0, blind_near_zero = 0;
     double worst = 0, worst_ratio = 0;
-    adaptive_simulate(rk, run, with_tolerance(tol, ControllerKind::pi), false,
+    adaptive_simulate(rk, run, with_tolerance(tol, ControllerKind::pi), /*record=*/false,
                       [&](const StepAttempt& a, const Vector& x, const Vector& v) {
                         if (!a.accepted) return;
                         xr = x, vr = v;
@@ -169,10 +179,20 @@ void estimate_check(const Options& opt, double tol, int substeps, const std::str
 
 }  // namespace
 
-std::vector<std::string> experiment_outputs() {
-  return {"pairs.md",         "order_conditions.md", "tree_counts.md",     "hard_case.dat",      "hard_case.md",
-          "pairs.dat",        "controllers.md",      "jump_response.dat",  "jump_response.md",   "estimate_check.dat",
-          "estimate_summary.dat", "estimate_check.md"};
+OutputList experiment_outputs() {
+  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment, data = OutputKind::data;
+  return {{"pairs.md", fragment, "the registry's pairs with the residuals of their order conditions"},
+          {"order_conditions.md", fragment, "the order conditions up to order 4"},
+          {"tree_counts.md", fragment, "the number of rooted trees by order"},
+          {"hard_case.dat", figure, "every attempt of dopri5 on the hard case, both controllers"},
+          {"hard_case.md", fragment, "the controllers on the hard case"},
+          {"pairs.dat", data, "every pair with both controllers at every tolerance"},
+          {"controllers.md", fragment, "the controllers' steps and evaluations, pair by pair"},
+          {"jump_response.dat", figure, "each pair's true error and estimate for a jump inside a step"},
+          {"jump_response.md", fragment, "how each pair's estimate answers a jump"},
+          {"estimate_check.dat", figure, "each accepted step's estimate against its true local error"},
+          {"estimate_summary.dat", data, "per pair: accepted steps, blind steps, worst errors"},
+          {"estimate_check.md", fragment, "each pair's estimate against the true local error"}};
 }
 
 void run_experiments(const Options& opt, bool quick, const std::string& command) {
@@ -184,7 +204,7 @@ void run_experiments(const Options& opt, bool quick, const std::string& command)
                command);
   throw_if_interrupted();
   jump_response(opt, command);
-  estimate_check(opt, 1e-5, quick ? 32 : 64, command);
+  estimate_check(opt, {.tol = 1e-5, .substeps = quick ? 32 : 64}, command);
 }
 
 }  // namespace ch08

@@ -3,14 +3,15 @@
 #pragma once
 
 #include "program/command_line.hpp"
+#include "program/output_spec.hpp"
 
 #include <string>
 #include <vector>
 
 namespace ch08 {
 
-/// The files run_experiments writes, relative to `--out`.
-std::vector<std::string> experiment_outputs();
+/// The files run_experiments writes, relative to `--out`, declared once (program/output_spec.hpp).
+cloth::OutputList experiment_outputs();
 
 /// pairs.md: the registry's pairs with the residuals of their order conditions (pair_tables.cpp).
 void pairs_table(const std::string& dir, const std::string& command);

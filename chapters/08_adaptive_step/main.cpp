@@ -11,6 +11,7 @@
 #include "program/command_line.hpp"
 #include "program/fragment.hpp"
 #include "program/output.hpp"
+#include "program/output_spec.hpp"
 #include "program/run_outputs.hpp"
 
 #include <cmath>
@@ -26,6 +27,13 @@ double positive(const std::string& text) {
   const double value = parse_number(text);
   if (!(value > 0)) throw InputError("'" + text + "' is not a positive number");
   return value;
+}
+
+// The files one run writes into --out, declared once (program/output_spec.hpp); with --experiments, the studies'
+// (experiments.hpp).
+OutputList single_run_outputs() {
+  return run_output_specs() +
+         OutputList{{"steps.dat", OutputKind::data, "every attempted step: t, h, error, accepted"}};
 }
 
 // steps.dat: every attempted step.
@@ -103,6 +111,7 @@ int main(int argc, char** argv) {
   cli.add_switch("--experiments", "the chapter's studies instead of one run: their data, and the tables of the book's page, in --out",
                  [&] { experiments = true; });
   cli.add_switch("--quick", "with --experiments: the reduced studies of the plots target", [&] { quick = true; });
+  cli.declare_outputs([&](const Options&) { return experiments ? ch08::experiment_outputs() : single_run_outputs(); });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
     if (experiments)
@@ -114,10 +123,8 @@ int main(int argc, char** argv) {
     settings.tolerances = {tol.value_or(rtol.value_or(1e-6)), tol.value_or(atol.value_or(1e-6)),
                            norm.value_or(NormKind::rms)};
     if (quick && !experiments) throw InputError("--quick: only with --experiments");
-    std::vector<std::string> single_run = run_output_names();
-    single_run.emplace_back("steps.dat");
     if (experiments) {
-      prepare_outputs(opt.run.out_dir, ch08::experiment_outputs(), single_run);
+      prepare_declared_outputs(opt.run.out_dir, ch08::experiment_outputs(), single_run_outputs());
       ch08::run_experiments(opt, quick, reader_command(argc, argv));
       return 0;
     }
@@ -128,7 +135,7 @@ int main(int argc, char** argv) {
       throw InputError(std::string("--tableau: ") + e.what());
     }
     const std::string source = tableau.name == tableau_argument ? "builtin" : escaped(tableau_argument);
-    prepare_outputs(opt.run.out_dir, single_run, ch08::experiment_outputs());
+    prepare_declared_outputs(opt.run.out_dir, single_run_outputs(), ch08::experiment_outputs());
     return run_once(opt, tableau, source, settings, cli.program());
   });
 }

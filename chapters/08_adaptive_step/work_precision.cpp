@@ -8,6 +8,7 @@
 #include "program/command_line.hpp"
 #include "program/fragment.hpp"
 #include "program/output.hpp"
+#include "program/output_spec.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -19,15 +20,29 @@ using namespace cloth;
 
 namespace {
 
-// The files the program writes into --out, in one list.
-const std::vector<std::string> outputs = {"work_precision.dat", "levels.dat",     "levels.md", "reference.md",
-                                          "spring_turn.md",     "evaluation_cost.md", "tries.md"};
+// The files the program writes into --out, declared once (program/output_spec.hpp).
+OutputList outputs() {
+  const OutputKind fragment = OutputKind::fragment;
+  return {{"work_precision.dat", OutputKind::figure_input, "every run of both sides: tolerance, error, time, work"},
+          {"levels.dat", OutputKind::data, "each side's fastest run at each error level"},
+          {"levels.md", fragment, "each side's fastest run at each error level, and the ratio"},
+          {"reference.md", fragment, "the reference and its credential"},
+          {"spring_turn.md", fragment, "dopri5 with and without the spring-turn check"},
+          {"evaluation_cost.md", fragment, "what one right-hand side costs on each side"},
+          {"tries.md", fragment, "how many configurations each side tried"}};
+}
+
+// The tolerance ladder's decades: rtol = atol from 10^-loosest to 10^-tightest.
+struct Decades {
+  int loosest = 2, tightest = 11;
+};
 
 // rtol = atol = 10^-k and 3 10^-(k+1): the same tolerances for every configuration of both sides, loosest first.
-std::vector<double> tolerance_ladder(int k_min, int k_max) {
+std::vector<double> tolerance_ladder(const Decades& decades) {
   std::vector<double> tolerances;
-  for (int k = k_min; k <= k_max; ++k) tolerances.insert(tolerances.end(), {std::pow(10.0, -k), 3 * std::pow(10.0, -k - 1)});
-  tolerances.pop_back();  // the ladder ends on 10^-k_max
+  for (int k = decades.loosest; k <= decades.tightest; ++k)
+    tolerances.insert(tolerances.end(), {std::pow(10.0, -k), 3 * std::pow(10.0, -k - 1)});
+  tolerances.pop_back();  // the ladder ends on 10^-tightest
   return tolerances;
 }
 
@@ -46,12 +61,14 @@ int main(int argc, char** argv) {
   cli.add_switch("--quick", "a reduced sweep for the plots target (well under a minute)", [&] { quick = true; });
   cli.add_value("--runs", "N", "timed runs per point, the best is kept (default 5)",
                 [&](const std::string& s) { runs = static_cast<int>(parse_count(s, 1, 100)); });
+  cli.declare_outputs([](const Options&) { return outputs(); });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    prepare_outputs(opt.run.out_dir, outputs);
+    prepare_declared_outputs(opt.run.out_dir, outputs());
     const std::string command = reader_command(argc, argv);
     const Scene scene(opt.scene);
-    const ch08::ComparisonPlan plan{opt.run, quick ? tolerance_ladder(3, 8) : tolerance_ladder(2, 11), runs};
+    const Decades decades = quick ? Decades{.loosest = 3, .tightest = 8} : Decades{.loosest = 2, .tightest = 11};
+    const ch08::ComparisonPlan plan{opt.run, tolerance_ladder(decades), runs};
 
     // 1. The reference and its credential.
     const double start = wall_seconds();

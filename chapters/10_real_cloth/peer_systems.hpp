@@ -4,7 +4,7 @@
 // matrix the book's Newton uses (compressed springs' transverse term and the damper's d/dx dropped).
 #pragma once
 
-#include "plain_fabric.hpp"
+#include "../06_speed_vs_error/plain_fabric.hpp"
 
 #include "base/format_number.hpp"
 #include "model/force_field.hpp"
@@ -54,7 +54,7 @@ class PlainSystem : public OdeSystem {
   }
 
  private:
-  PlainFabric cloth_;
+  ch06::PlainFabric cloth_;
   bool definite_;
 };
 

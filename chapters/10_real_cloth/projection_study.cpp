@@ -6,7 +6,7 @@
 // The book's own symplectic Euler and RK4 run beside them. Writes projection_runs.md (every run),
 // projection_ratio.md (the comparison) and projection_model.md (the spring model's stretch and the inextensible
 // model's distance from it) to --out.
-#include "plain_fabric.hpp"
+#include "../06_speed_vs_error/plain_fabric.hpp"
 #include "projection_runs.hpp"
 #include "study.hpp"
 
@@ -55,14 +55,14 @@ Vector book_run(const Scene& scene, const std::string& method, long long n) {
 }
 // [book_run]
 
-Vector plain_symplectic_euler(const ch10::PlainFabric& c, long long n) {
+Vector plain_symplectic_euler(const ch06::PlainFabric& c, long long n) {
   std::vector<double> y = c.initial_state(), a(static_cast<std::size_t>(3 * c.particles()));
   const double h = T / static_cast<double>(n);
   for (long long k = 0; k < n; ++k) c.symplectic_euler_step(h, y, a);
   return Eigen::Map<const Vector>(y.data(), 3 * c.particles());
 }
 
-Vector odeint_rk4(const ch10::PlainFabric& c, long long n) {
+Vector odeint_rk4(const ch06::PlainFabric& c, long long n) {
   std::vector<double> y = c.initial_state();
   boost::numeric::odeint::runge_kutta4<std::vector<double>> rk4;
   const double h = T / static_cast<double>(n);
@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
     const Vector truth = spring_model_at_T(scene, field, quick, motion);
 
     // [contenders]
-    const ch10::PlainFabric plain(p.grid.M, p.grid.N, p.grid.d, p.stiffness, p.damping, p.mass, p.gravity,
+    const ch06::PlainFabric plain(p.grid.M, p.grid.N, p.grid.d, p.stiffness, p.damping, p.mass, p.gravity,
                                   p.initial_velocity_z, /*edge=*/true);
     const double h_se = 4.4e-5, h_rk4 = 6.4e-5;  // just inside each explicit method's stable step here
     std::vector<Contender> contenders = {

@@ -1,14 +1,17 @@
 // The cloth as a reader would write it for an ODE library, sharing no code with the book's core: every particle's
 // position and velocity in one array y = (x, v), a plain loop over the springs for y' = (v, f / m), and the same
 // loop for the analytic Jacobian dy'/dy in compressed columns (for SUNDIALS' KLU). Pinned particles stay in the
-// state with zero derivatives. Chapter 10's peer programs drive odeint and SUNDIALS with it.
+// state with zero derivatives. The peer programs drive Boost.Odeint and SUNDIALS with it: Chapter 6's odeint peer
+// (odeint_peer.cpp) and Chapter 10's. A library that takes the system by value (odeint's steppers) is given it by
+// reference, std::cref(fabric): a copy carries the springs and the Jacobian's pattern, and odeint copies the system
+// at every step.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-namespace ch10 {
+namespace ch06 {
 
 class PlainFabric {
  public:
@@ -183,4 +186,4 @@ class PlainFabric {
   std::vector<long> start_, row_;
 };
 
-}  // namespace ch10
+}  // namespace ch06
