@@ -28,6 +28,7 @@ cloth::OutputList report_outputs() {
           {"sphere.md", fragment, "every family on the small drape: deepest penetration, kinetic energy at T"},
           {"sphere_energy.dat", figure, "kinetic energy over its peak, one block per method"},
           {"sphere_frames.dat", figure, "frames of the 20 x 20 sheet draping over the sphere"},
+          {"sdirk2_rest.md", fragment, "SDIRK2 on the drape at three steps: energy left, the fastest velocity and its motion"},
           {"sphere_rest.md", fragment, "the scene's drape at 10 s: kinetic energy over its peak, deepest penetration"},
           {"fold.md", fragment, "the folding strip: closest pair, passes, hash builds, cost against the forces"},
           {"fold_frames.dat", figure, "frames of the strip folding"},
@@ -44,6 +45,7 @@ int run_report(int argc, char** argv, const cloth::Options& opt) {
   const Study study{opt.run.out_dir, cloth::reader_command(argc, argv), quick};
   incline_study(study);
   sphere_study(study);
+  sdirk2_rest_study(study);
   fold_study(study);
   hash_benchmark(study);
   edge_crossing_study(study);

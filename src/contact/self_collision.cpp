@@ -50,12 +50,16 @@ void SelfCollision::find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) 
   work_.pairs_found += static_cast<long long>(pairs_.size());
 }
 
-void SelfCollision::update_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) {
+bool SelfCollision::moved_beyond_margin(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  if (!candidates_current_ || built_at_.size() != x.size()) return true;
   const double margin2 = thickness_ * thickness_ / 16;
-  bool moved = !candidates_current_ || built_at_.size() != x.size();
-  for (Eigen::Index s = 0; !moved && s < x.size(); s += 3)
-    moved = (x.segment<3>(s) - built_at_.segment<3>(s)).squaredNorm() > margin2;
-  if (moved) {
+  for (Eigen::Index s = 0; s < x.size(); s += 3)
+    if ((x.segment<3>(s) - built_at_.segment<3>(s)).squaredNorm() > margin2) return true;
+  return false;
+}
+
+void SelfCollision::update_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  if (moved_beyond_margin(x)) {
     find_candidates(x);
   } else {
     ++work_.reuses;

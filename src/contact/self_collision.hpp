@@ -47,6 +47,10 @@ class SelfCollision {
   /// 1.5 delta at the build, so the kept list still holds every contact (a Verlet list with a skin).
   void update_candidates(const Eigen::Ref<const Eigen::VectorXd>& x);
 
+  /// Whether some particle of x lies more than delta / 4 from where it was at the last build (or nothing was built):
+  /// then the candidates may miss a contact.
+  [[nodiscard]] bool moved_beyond_margin(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
   /// One pass over the candidates: the pairs closer than delta (1 - 1e-3) parted to delta (resolve_self_contacts).
   /// Returns the pairs corrected; a caller repeats it until none is (a correction may bring another pair too
   /// close), and the passes end once every pair is within a thousandth of the thickness.
