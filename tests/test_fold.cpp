@@ -70,6 +70,12 @@ TEST_CASE("a folding strip: no two layers closer than the thickness after any st
         std::sort(truth.begin(), truth.end());
         CHECK(found == truth);
         contacts += static_cast<int>(truth.size());
+        // The list the run kept, perhaps built steps ago (its skin): every pair closer than the thickness is in it.
+        std::vector<std::pair<int, int>> kept = stepper.self_collision()->candidates();
+        std::sort(kept.begin(), kept.end());
+        for (const auto& [a, b] : truth)
+          if ((x.segment<3>(3 * b) - x.segment<3>(3 * a)).norm() < thickness)
+            CHECK(std::binary_search(kept.begin(), kept.end(), std::make_pair(a, b)));
       }
       lowest_top = std::min(lowest_top, x[x.size() - 1]);
     }
@@ -78,6 +84,7 @@ TEST_CASE("a folding strip: no two layers closer than the thickness after any st
     CHECK(lowest_top < 0.1);  // the strip did fall and fold: its top came down from 0.39 m
     CHECK(stepper.self_collision()->work().pairs_corrected > 100);  // and its layers met
     CHECK(contacts > 50);  // the comparison saw pairs
+    CHECK(stepper.self_collision()->work().reuses > 100);  // and the run kept its candidates for steps at a time
   }
 }
 

@@ -27,13 +27,34 @@ TEST_CASE("the spatial hash finds exactly the pairs a brute-force search finds, 
     SpatialHash hash(cloud.r, cloud.buckets);
     hash.build(x);
     std::vector<std::pair<int, int>> found;
-    hash.pairs_within(x, cloud.r, found);
+    hash.pairs_within(cloud.r, found);
     std::vector<std::pair<int, int>> truth = pairs_within_brute_force(x, cloud.r);
     std::sort(found.begin(), found.end());
     std::sort(truth.begin(), truth.end());
     CHECK(truth.size() > 20);  // the clouds are dense enough for the comparison to mean something
     CHECK(found == truth);     // the same pairs, each once
   }
+}
+
+TEST_CASE("the mesh-aware hash finds exactly the close pairs that were apart at rest, as a brute-force search does") {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> coordinate(-0.5, 0.5);
+  const int particles = 1500;
+  const double r = 0.06, apart = 0.3;  // about a third of the close pairs were within `apart` at rest
+  Eigen::VectorXd x(3 * particles), rest(3 * particles);
+  for (Eigen::Index k = 0; k < x.size(); ++k) x[k] = coordinate(rng);
+  for (Eigen::Index k = 0; k < x.size(); ++k) rest[k] = coordinate(rng);
+  SpatialHash hash(r, 3000);
+  hash.build(x, rest);
+  std::vector<std::pair<int, int>> found, truth, near_at_rest;
+  hash.pairs_within(r, found, apart);
+  for (const auto& p : pairs_within_brute_force(x, r))
+    ((rest.segment<3>(3 * p.second) - rest.segment<3>(3 * p.first)).norm() > apart ? truth : near_at_rest).push_back(p);
+  std::sort(found.begin(), found.end());
+  CHECK(truth.size() > 100);
+  CHECK(near_at_rest.size() > 20);  // the filter has pairs to leave out
+  CHECK(found == truth);
+  CHECK(hash.distance_tests() >= static_cast<long long>(found.size() + near_at_rest.size()));
 }
 
 TEST_CASE("the self-contact response conserves linear momentum and parts a pair to the thickness") {

@@ -12,6 +12,7 @@
 #include "integrators/simulate.hpp"
 #include "program/command_line.hpp"
 #include "program/output.hpp"
+#include "program/output_spec.hpp"
 #include "program/progress.hpp"
 
 #include <algorithm>
@@ -85,7 +86,7 @@ int single_run(Options& opt, SceneKind kind, const ContactFlags& flags, const st
   const Scene scene(opt.scene);
   ForceField field(scene);
   const std::unique_ptr<Stepper> stepper = contact_stepper(*method, field, model, newton, iterations, lines);
-  prepare_outputs(opt.run.out_dir, run_output_names());
+  prepare_declared_outputs(opt.run.out_dir, run_output_specs(), report_outputs());
   RunSettings run = opt.run;
   run.progress = terminal_progress(program);
   const RunResult result = simulate(*stepper, run);
@@ -132,6 +133,7 @@ int main(int argc, char** argv) {
   add_report_flags(cli);
   newton.add_to(cli);
   iterations.add_to(cli);
+  cli.declare_outputs([&](const Options&) { return report ? report_outputs() : run_output_specs(); });
   return run_program(cli.program(), [&] {
     Options opt = cli.parse(argc, argv);
     if (report) return run_report(argc, argv, opt);

@@ -127,4 +127,35 @@ void sphere_study(const Study& study) {
 }
 // [sphere_study]
 
+// [sdirk2_rest]
+// SDIRK2 corrected after the step on the small drape, at three steps: how much of its peak kinetic energy the sheet
+// keeps at T = 4 s, its fastest particle's velocity then, and how fast that particle actually moves over the next
+// step. A velocity the particle does not move with is the mark of a state the correction and the stages disagree on.
+void sdirk2_rest_study(const Study& study) {
+  MarkdownTable table({"h [s]", "kinetic energy at 4 s / peak", "fastest particle's speed |v| [m/s]",
+                       "its displacement over the next step / h [m/s]", "its distance from the sphere's shell [mm]"},
+                      "rrrrr");
+  const Grid small{10, 10, 0.05};
+  ContactFlags small_sphere;
+  small_sphere.sphere_radius = 0.15;
+  for (const double h : {1e-2, 5e-3, 2.5e-3}) {
+    const BuiltScene b = build_scene(SceneKind::sphere, small_sphere, &small);
+    const auto stepper = study_stepper("sdirk2", *b.field, b.model);
+    SteppedRun run = step_run(*stepper, b, h, 4, 1);
+    double peak = 0;
+    for (const double k : run.kinetic) peak = std::max(peak, k);
+    Eigen::Index fastest = 0;
+    for (Eigen::Index s = 0; s < run.v.size() / 3; ++s)
+      if (run.v.segment<3>(3 * s).norm() > run.v.segment<3>(3 * fastest).norm()) fastest = s;
+    const Eigen::Vector3d before = run.x.segment<3>(3 * fastest), speed = run.v.segment<3>(3 * fastest);
+    const bool stepped = run.ok && stepper->step(h, run.x, run.v);
+    const double shell = surface_point(b.model.obstacles.back(), before).phi - b.model.thickness;
+    table.add_row({format_number(h), format_number(run.kinetic.back() / peak, 2), format_number(speed.norm(), 3),
+                   stepped ? format_number((run.x.segment<3>(3 * fastest) - before).norm() / h, 3) : "failed",
+                   format_fixed(1e3 * shell, 1)});
+  }
+  write_table_fragment(study.dir + "/sdirk2_rest.md", table, study.command);
+}
+// [sdirk2_rest]
+
 }  // namespace ch11

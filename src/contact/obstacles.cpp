@@ -58,19 +58,24 @@ Eigen::Vector3d coulomb(const Eigen::Vector3d& t, double j_n, const Friction& fr
 
 namespace {
 
+// What the displacement rule did to one particle against one obstacle.
+enum class Touch { none, stuck, slid };
+
 // The displacement rule for one particle against one obstacle: when x1 lies within the thickness (d > 0), moves it
-// out along the normal n by d, passes its tangential displacement from x0 through the cone, sets n and returns true.
-bool correct_displacement(const ContactModel& model, const Obstacle& obstacle, const Eigen::Vector3d& x0,
-                          Eigen::Ref<Eigen::Vector3d> x1, Eigen::Vector3d& n) {
+// out along the normal n by d, passes its tangential displacement from x0 through the cone and sets n. Returns
+// stuck when friction held the particle where it was along the surface.
+Touch correct_displacement(const ContactModel& model, const Obstacle& obstacle, const Eigen::Vector3d& x0,
+                           Eigen::Ref<Eigen::Vector3d> x1, Eigen::Vector3d& n) {
   const SurfacePoint surface = surface_point(obstacle, x1);
   const double d = model.thickness - surface.phi;  // penetration of the shell of the cloth's thickness
-  if (!(d > 0)) return false;
+  if (!(d > 0)) return Touch::none;
   n = surface.normal;
   // Out along n by d; the tangential part through the cone, with the normal correction d as the impulse.
   const Eigen::Vector3d dx = x1 - x0 + d * n;
   const double dx_n = dx.dot(n);
-  x1 = x0 + dx_n * n + coulomb(dx - dx_n * n, d, model.friction);
-  return true;
+  const Eigen::Vector3d t = coulomb(dx - dx_n * n, d, model.friction);
+  x1 = x0 + dx_n * n + t;
+  return model.friction.mu_s > 0 && t.isZero(0) ? Touch::stuck : Touch::slid;
 }
 
 }  // namespace
@@ -83,12 +88,20 @@ int resolve_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const 
   const Eigen::Index particles = x1.size() / 3;
   for (Eigen::Index s = 0; s < particles; ++s) {
     for (const Obstacle& obstacle : model.obstacles) {
-      if (!correct_displacement(model, obstacle, x0.segment<3>(3 * s), x1.segment<3>(3 * s), n)) continue;
+      const Touch touch = correct_displacement(model, obstacle, x0.segment<3>(3 * s), x1.segment<3>(3 * s), n);
+      if (touch == Touch::none) continue;
       ++contacts;
-      // The velocity: an inward normal part stopped, its tangential part through the cone with that impulse.
       const Eigen::Vector3d v = v1.segment<3>(3 * s);
       const double v_n = v.dot(n);
-      if (v_n < 0) v1.segment<3>(3 * s) = coulomb(v - v_n * n, -v_n, model.friction);
+      if (touch == Touch::stuck) {
+        // Held in place along the surface: no tangential velocity either, whatever the step's own velocity says.
+        // A step whose displacement is not h v1 (a Runge-Kutta method's weighted stages) can otherwise end with a
+        // velocity the particle never moves with, which its next step's stages then start from.
+        v1.segment<3>(3 * s) = std::max(v_n, 0.0) * n;
+      } else if (v_n < 0) {
+        // The velocity: an inward normal part stopped, its tangential part through the cone with that impulse.
+        v1.segment<3>(3 * s) = coulomb(v - v_n * n, -v_n, model.friction);
+      }
     }
   }
   return contacts;
@@ -101,7 +114,7 @@ int project_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const 
   Eigen::Vector3d n;
   for (Eigen::Index s = 0; s < x1.size() / 3; ++s)
     for (const Obstacle& obstacle : model.obstacles)
-      contacts += correct_displacement(model, obstacle, x0.segment<3>(3 * s), x1.segment<3>(3 * s), n) ? 1 : 0;
+      contacts += correct_displacement(model, obstacle, x0.segment<3>(3 * s), x1.segment<3>(3 * s), n) != Touch::none ? 1 : 0;
   return contacts;
 }
 

@@ -58,7 +58,9 @@ void validate(const ContactModel& model);
 ///  - the displacement x1 - x0: moved out along n by d, and its tangential part reduced by the cone: removed
 ///    when it is at most mu_s d (sticking), else shortened by mu_k d (sliding);
 ///  - the velocity, when it points into the obstacle (v_n < 0): v_n set to 0 (a perfectly inelastic contact),
-///    and its tangential part removed when at most mu_s |v_n|, else shortened by mu_k |v_n|.
+///    and its tangential part removed when at most mu_s |v_n|, else shortened by mu_k |v_n|; when the
+///    displacement stuck (with friction), the tangential velocity is removed too, so that a particle held in
+///    place does not keep a velocity it does not move with.
 /// Both rules are the cone applied to an impulse: the one that corrects the displacement and the one that
 /// stops the normal velocity. Velocities leaving the obstacle are not touched, and without friction the
 /// tangential motion is not either.

@@ -41,11 +41,30 @@ int SelfCollision::clamp(const Eigen::Ref<const Eigen::VectorXd>& x0, double h, 
 
 // [self_collision_pass]
 void SelfCollision::find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) {
-  hash_.build(x);
-  hash_.pairs_within(x, 1.5 * thickness_, pairs_);
+  hash_.build(x, rest_);
+  hash_.pairs_within(1.5 * thickness_, pairs_, 2 * thickness_ * (1 + 1e-9));
+  built_at_ = x;
+  candidates_current_ = true;
   ++work_.builds;
-  std::erase_if(pairs_, [&](const std::pair<int, int>& p) { return !apart_at_rest(p.first, p.second); });
+  work_.distance_tests += hash_.distance_tests();
   work_.pairs_found += static_cast<long long>(pairs_.size());
+}
+
+bool SelfCollision::moved_beyond_margin(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  if (!candidates_current_ || built_at_.size() != x.size()) return true;
+  const double margin2 = thickness_ * thickness_ / 16;
+  for (Eigen::Index s = 0; s < x.size(); s += 3)
+    if ((x.segment<3>(s) - built_at_.segment<3>(s)).squaredNorm() > margin2) return true;
+  return false;
+}
+
+void SelfCollision::update_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  if (moved_beyond_margin(x)) {
+    find_candidates(x);
+  } else {
+    ++work_.reuses;
+    work_.pairs_found += static_cast<long long>(pairs_.size());
+  }
 }
 
 int SelfCollision::resolve(Eigen::VectorXd& x, Eigen::VectorXd& v) {
@@ -63,12 +82,11 @@ std::vector<std::pair<int, int>> SelfCollision::candidates_brute_force(const Eig
 }
 
 double SelfCollision::closest_distance(const Eigen::Ref<const Eigen::VectorXd>& x, double rest_factor) {
-  hash_.build(x);
-  hash_.pairs_within(x, thickness_, pairs_);
+  hash_.build(x, rest_);
+  hash_.pairs_within(thickness_, pairs_, rest_factor * thickness_ * (1 + 1e-9));
+  candidates_current_ = false;  // pairs_ now holds this check's pairs, not the step's candidates
   double closest = thickness_;
-  for (const auto& [a, b] : pairs_)
-    if ((rest_.segment<3>(3 * b) - rest_.segment<3>(3 * a)).norm() > rest_factor * thickness_ * (1 + 1e-9))
-      closest = std::min(closest, (x.segment<3>(3 * b) - x.segment<3>(3 * a)).norm());
+  for (const auto& [a, b] : pairs_) closest = std::min(closest, (x.segment<3>(3 * b) - x.segment<3>(3 * a)).norm());
   return closest;
 }
 

@@ -16,9 +16,11 @@ struct SelfCollisionWork {
   long long pairs_found = 0;      ///< close pairs the hash returned, over all passes
   long long pairs_corrected = 0;  ///< of them, pairs the response moved
   long long clamped = 0;          ///< particles whose displacement the clamp shortened
-  long long builds = 0;           ///< hash builds and queries (one per step)
+  long long builds = 0;           ///< hash builds and queries
+  long long reuses = 0;           ///< steps that kept the last build's candidates (no particle moved a margin)
+  long long distance_tests = 0;   ///< distances the hash's queries computed
   long long passes = 0;           ///< response passes over the candidates
-  double seconds = 0;             ///< hash builds, queries and responses
+  double seconds = 0;             ///< processor seconds of the clamp, hash builds, queries and responses
 };
 
 /// The particles of one cloth, their rest positions (3 per particle, the flat sheet the scene starts from) and the
@@ -35,10 +37,19 @@ class SelfCollision {
   int clamp(const Eigen::Ref<const Eigen::VectorXd>& x0, double h, Eigen::Ref<Eigen::VectorXd> x1,
             Eigen::Ref<Eigen::VectorXd> v1) const;
 
-  /// Builds the hash on x and keeps the candidate pairs of this step: closer than 1.5 delta, and farther than
-  /// 2 delta apart at rest. Particles move little while their contacts are resolved, so the passes that follow read
-  /// this list rather than query the hash again.
+  /// Builds the hash on x and keeps the candidate pairs: closer than 1.5 delta, and farther than 2 delta apart at
+  /// rest (the hash leaves the mesh's neighbours out as it finds them). Particles move little while their contacts
+  /// are resolved, so the passes that follow read this list rather than query the hash again.
   void find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x);
+
+  /// The candidates for x: those of the last build while no particle has moved more than delta / 4 from where it
+  /// was then, else find_candidates(x). A pair closer than delta now was closer than delta + 2 (delta / 4) =
+  /// 1.5 delta at the build, so the kept list still holds every contact (a Verlet list with a skin).
+  void update_candidates(const Eigen::Ref<const Eigen::VectorXd>& x);
+
+  /// Whether some particle of x lies more than delta / 4 from where it was at the last build (or nothing was built):
+  /// then the candidates may miss a contact.
+  [[nodiscard]] bool moved_beyond_margin(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   /// One pass over the candidates: the pairs closer than delta (1 - 1e-3) parted to delta (resolve_self_contacts).
   /// Returns the pairs corrected; a caller repeats it until none is (a correction may bring another pair too
@@ -64,6 +75,8 @@ class SelfCollision {
   [[nodiscard]] bool apart_at_rest(int a, int b) const;
 
   Eigen::VectorXd rest_;
+  Eigen::VectorXd built_at_;  // the positions of the last find_candidates
+  bool candidates_current_ = false;
   double thickness_;
   SpatialHash hash_;
   std::vector<std::pair<int, int>> pairs_;  // reused: a step allocates nothing once it has seen its most pairs

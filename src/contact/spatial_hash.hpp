@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -10,39 +12,53 @@ namespace cloth {
 
 /// Particles binned by the cubic cell of side `cell` they lie in, each cell (i, j, k) hashed to one of a fixed
 /// number of buckets by Teschner et al.'s h = i p1 xor j p2 xor k p3 with p1 = 73856093, p2 = 19349663,
-/// p3 = 83492791, reduced to [0, buckets) by a multiplication rather than their mod (a division per cell). The buckets are stored as one array sorted by bucket (a counting sort), so a
-/// build allocates nothing once the hash has seen its largest cloud.
+/// p3 = 83492791, reduced to [0, buckets) by a multiplication rather than their mod (a division per cell). The
+/// particles are stored as one array sorted by bucket (a counting sort) and, within a bucket, by cell, so each
+/// occupied cell is one contiguous run: a query reads the neighbouring cells once per cell, not once per particle.
+/// A build allocates nothing once the hash has seen its largest cloud.
 class SpatialHash {
  public:
-  /// Cells of side `cell` (no smaller than the largest r queried, so that a query looks at a particle's cell and its neighbours only) and
-  /// `buckets` buckets (about twice the particles keeps collisions of distinct cells rare).
+  /// Cells of side `cell` (no smaller than the largest r queried, so that a query looks at a cell and its neighbours
+  /// only) and `buckets` buckets (about twice the particles keeps collisions of distinct cells rare).
   SpatialHash(double cell, int buckets);
 
   /// Bins the particles of x (3 coordinates per particle).
   void build(const Eigen::Ref<const Eigen::VectorXd>& x);
+  /// Bins the particles of x with their rest positions (3 per particle), so that a query can leave out the pairs
+  /// that were near each other at rest: the mesh's own neighbours.
+  void build(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& rest);
 
   /// Every pair (a, b), a < b, of the particles last built whose distance is below r (r <= cell), in no
-  /// particular order. Each pair once: a particle counts only for the cell it lies in, though its bucket may be
-  /// read for another cell that hashes alike.
-  void pairs_within(const Eigen::Ref<const Eigen::VectorXd>& x, double r, std::vector<std::pair<int, int>>& pairs) const;
+  /// particular order, each once. With `apart_at_rest` > 0 (and rest positions built) only the pairs whose rest
+  /// positions are farther apart than it: the neighbours at rest are tested and dropped inside the loop, never
+  /// stored.
+  void pairs_within(double r, std::vector<std::pair<int, int>>& pairs, double apart_at_rest = 0);
 
   [[nodiscard]] double cell() const { return cell_; }
+  /// The distances the last query computed: its candidates, every pair of particles in neighbouring cells.
+  [[nodiscard]] long long distance_tests() const { return distance_tests_; }
 
  private:
-  [[nodiscard]] int bucket(long long i, long long j, long long k) const;
-  [[nodiscard]] long long cell_index(double coordinate) const;
+  struct Entry {
+    Eigen::Vector3d x, rest;
+    int particle;
+  };
+
+  [[nodiscard]] std::uint64_t key_of(const Eigen::Ref<const Eigen::Vector3d>& x) const;
+  [[nodiscard]] static std::uint64_t neighbour(std::uint64_t key, int di, int dj, int dk);
+  [[nodiscard]] int bucket(std::uint64_t key) const;
+  /// The run [first, last) of the entries that lie in the cell `key`; empty when none do.
+  [[nodiscard]] std::pair<std::size_t, std::size_t> run_of(std::uint64_t key) const;
+  void sort_buckets_by_cell();
 
   double cell_;
   int buckets_;
-  std::vector<int> bucket_start_;  // particles of bucket b: sorted_[bucket_start_[b] .. bucket_start_[b + 1])
-  std::vector<int> sorted_;
-  std::vector<long long> cells_;  // the cell (i, j, k) of each particle, 3 per particle
-  struct Entry {
-    int particle;
-    long long cell[3];  // NOLINT(*-avoid-c-arrays): three indices read side by side
-    Eigen::Vector3d x;
-  };
-  std::vector<Entry> entries_;  // sorted_ with each particle's cell and position, in bucket order
+  bool has_rest_ = false;
+  long long distance_tests_ = 0;
+  std::vector<int> bucket_start_;            // entries of bucket b: entries_[bucket_start_[b] .. bucket_start_[b + 1])
+  std::vector<std::uint64_t> particle_keys_;  // the cell of each particle
+  std::vector<std::uint64_t> keys_;           // the cell of each entry: the array a query scans for a cell's run
+  std::vector<Entry> entries_;               // each particle with its positions, in bucket order, then cell order
 };
 
 /// The pairs a brute-force comparison of every pair finds: the independent check of the hash.

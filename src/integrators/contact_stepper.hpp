@@ -37,7 +37,10 @@ class ContactStepper final : public Stepper {
   [[nodiscard]] int last_contacts() const { return last_contacts_; }
   /// The self-collision state (its work and time), when the model asks for it.
   [[nodiscard]] const SelfCollision* self_collision() const { return self_ ? &*self_ : nullptr; }
-  static constexpr int max_self_passes = 8;
+  static constexpr int max_self_passes = 16;
+  /// Hash builds in one step at most: the step's first, and rebuilds after passes that moved a particle beyond the
+  /// candidates' margin.
+  static constexpr int max_self_rounds = 3;
 
  private:
   void correct_with_self_collision(double h, Vector& x, Vector& v);
