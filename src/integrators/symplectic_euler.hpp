@@ -13,10 +13,13 @@ class SymplecticEuler final : public Stepper {
   explicit SymplecticEuler(ForceField& field) : Stepper(field), a_(field.dof_count()) {}
   [[nodiscard]] std::string name() const override { return "symplectic_euler"; }
   bool step(double h, Vector& x, Vector& v) override {
+    // The two updates share one pass over the state (written as two Eigen lines they would be two passes).
     // [symplectic_euler_step]
     field_.acceleration(x, v, a_);  // a = M^{-1} f(x0, v0)
-    v += h * a_;                    // v1 = v0 + h a
-    x += h * v;                     // x1 = x0 + h v1: the new velocity moves the particles
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      v[i] += h * a_[i];  // v1 = v0 + h a
+      x[i] += h * v[i];   // x1 = x0 + h v1: the new velocity moves the particles
+    }
     // [symplectic_euler_step]
     ++counters_.rhs_evaluations;
     ++counters_.steps;
