@@ -71,20 +71,26 @@ constexpr CommonFlag common_flags[] = {
     {"--spacing", "d", "rest spacing [m], > 0", "0.1"},
     {"--mass", "m", "mass of each particle [kg], > 0", "1"},
     {"--K", "k", "spring stiffness [N/m], > 0", "50"},
-    {"--K-flexion", "k", "stiffness of the flexion springs alone [N/m], > 0", "--K"},
-    {"--damping", "D", "damping coefficient, >= 0", "0"},
+    {"--K-flexion", "k", "stiffness of the flexion springs alone [N/m], > 0 (fabric bends far more easily than it "
+     "stretches, Chapter 10)",
+     "--K"},
+    {"--damping", "D", "damping coefficient [N s/m], >= 0", "0"},
     {"--damping-model", "projected|report", "damping law", "projected"},
-    {"--springs", "LIST", "comma list of structural,shear,flexion", "all three"},
-    {"--pins", "corners|corner|edge|none", "pinned particles", "corners"},
+    {"--springs", "LIST", "the spring families modelled, a comma list of structural,shear,flexion", "all three"},
+    {"--pins", "corners|corner|edge|none",
+     "pinned particles: the four corners, the one corner (0,0), the whole edge j = N-1, or none", "corners"},
     {"--v0", "vz", "initial z velocity of free particles [m/s]", "-20"},
     {"--bending", "flexion|hinge|quadratic",
-     "bending: the flexion springs alone, or a hinge or quadratic energy on the triangles (Chapter 12)", "flexion"},
+     "bending: the flexion springs alone, or a hinge or quadratic energy on the triangles with rigidity "
+     "--bending-rigidity, added to every force, energy and Newton matrix (Chapter 12)", "flexion"},
     {"--bending-rigidity", "B", "bending rigidity of the hinge and quadratic energies [N m], > 0", "5e-6"},
-    {"--swing", "w", "initial turning rate about the edge j = N-1 [rad/s] (> 0 lifts the far edge)", "0"},
-    {"--dt", "h", "time step [s], > 0", "0.01"},
+    {"--swing", "w",
+     "initial turning rate about the edge j = N-1 [rad/s], on top of --v0: particle (i,j) starts with the z velocity "
+     "w (N-1-j) d (> 0 lifts the far edge)", "0"},
+    {"--dt", "h", "time step [s] of the fixed-step methods, > 0", "0.01"},
     {"--t-end", "T", "simulated time [s], >= dt", "2"},
     {"--frames", "n", "frames.dat holds n+1 frames (at most one per step), 1 <= n <= 100000", "20"},
-    {"--out", "DIR", "output folder", ""},
+    {"--out", "DIR", "the folder the outputs go to", ""},
 };
 
 const CommonFlag* find_common(const std::string& flag) {
