@@ -12,7 +12,15 @@ int main(int argc, char** argv) {
   if (which == "common") {
     // A command line with no chapter flags accepts every common flag at its declared default.
     const cloth::CommandLine cli("PROGRAM", "");
-    std::cout << cli.markdown_reference();
+    std::string text = cli.markdown_reference();
+    // The table is every program's, not one program's: its defaults are the declared ones, and `--out`'s is the
+    // program's own name.
+    const auto replace = [&text](const std::string& from, const std::string& to) {
+      if (const auto at = text.find(from); at != std::string::npos) text.replace(at, from.size(), to);
+    };
+    replace("| default here |", "| default |");
+    replace("`./PROGRAM`", "a folder named after the program, in the current directory");
+    std::cout << text;
     return 0;
   }
   if (which == "method") {
