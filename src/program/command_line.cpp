@@ -230,7 +230,8 @@ std::string CommandLine::usage() const {
 }
 
 std::string CommandLine::markdown_reference() const {
-  // A table cell holds no '|' (it would end the cell: the character entity stands for it) and shows flags and
+  // A table cell holds no bare '|' (it would end the cell; Doxygen prints an escaped one, where it would print a
+  // character entity literally) and shows flags and
   // values as code, each alternative of a value as code of its own.
   // A flag named in the text ("--dt") is code too: as plain text its "--" would print as a dash.
   const auto cell = [](const std::string& text) {
@@ -244,7 +245,7 @@ std::string CommandLine::markdown_reference() const {
         out += "`" + text.substr(k, end - k) + "`";
         k = end - 1;
       } else {
-        out += text[k] == '|' ? std::string("&#124;") : std::string(1, text[k]);
+        out += text[k] == '|' ? std::string("\\|") : std::string(1, text[k]);
       }
     }
     return out;
