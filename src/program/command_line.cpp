@@ -245,7 +245,7 @@ std::string CommandLine::markdown_reference() const {
         out += "`" + text.substr(k, end - k) + "`";
         k = end - 1;
       } else {
-        out += text[k] == '|' ? std::string("\\|") : std::string(1, text[k]);
+        out += text[k] == '|' ? std::string{'\\', '|'} : std::string(1, text[k]);
       }
     }
     return out;
