@@ -49,7 +49,7 @@ foreach(line IN LISTS lines)
   elseif(kind STREQUAL "data")
     set(reader "the reader")
   endif()
-  string(REPLACE "|" "&#124;" holds "${holds}")  # a "|" would end the cell
+  string(REPLACE "|" "\\|" holds "${holds}")  # a bare "|" would end the cell; Doxygen prints an escaped one
   string(REGEX REPLACE "(^|[ (])(--[a-z][a-z0-9-]*)" "\\1`\\2`" holds "${holds}")  # a flag as code, not a dash
   string(APPEND table "| `${name}` | ${reader} | ${holds} |\n")
   if(kind STREQUAL "fragment")

@@ -159,8 +159,9 @@ CantileverRest Cantilever::rest_shape(CantileverStart start, double tolerance, i
     bool definite = solver.info() == Eigen::Success && solver.vectorD().minCoeff() > 0;
     if (!definite) {
       // Compressed springs (the inside of a bend of flexion springs) and hinges folded past their inflection make
-      // the exact Hessian indefinite: their definite parts (Choi & Ko 2002 for the springs, Gauss-Newton for the
-      // hinges) give a descent direction instead. newton_matrix is M - tau^2 df/dx with the scene's uniform masses.
+      // the exact Hessian indefinite: their definite parts (the axial term alone for compressed springs, after
+      // Choi & Ko 2002; Gauss-Newton for the hinges) give a descent direction instead. newton_matrix is
+      // M - tau^2 df/dx with the scene's uniform masses.
       field_->newton_matrix(rest.x, zero_velocity_, tau, StiffnessTreatment::definite, A);
       A.coeffs() /= tau * tau;
       solver.factorize(A);

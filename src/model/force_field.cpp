@@ -380,7 +380,8 @@ void ForceField::for_each_spring_block(StiffnessTreatment treatment, AddBlocks&&
       const Vector3d u = d / l;
       const Matrix3d uu = u * u.transpose();
       // Spring: df_p/dx_p = -K [u u^T + (1 - L0/l)(I - u u^T)]. A compressed spring (l < L0) makes the
-      // transverse coefficient negative, so the block is indefinite; Choi & Ko (2002) drop it.
+      // transverse coefficient negative, so the block is indefinite; `definite` drops it, as Choi & Ko
+      // (2002) do for their compressed (buckling) springs, whose Jacobian keeps only the u u^T term.
       double transverse = 1.0 - s.rest_length / l;
       if (definite) transverse = std::max(transverse, 0.0);
       Matrix3d Bx = -K * (uu + transverse * (I - uu));

@@ -71,20 +71,26 @@ constexpr CommonFlag common_flags[] = {
     {"--spacing", "d", "rest spacing [m], > 0", "0.1"},
     {"--mass", "m", "mass of each particle [kg], > 0", "1"},
     {"--K", "k", "spring stiffness [N/m], > 0", "50"},
-    {"--K-flexion", "k", "stiffness of the flexion springs alone [N/m], > 0", "--K"},
-    {"--damping", "D", "damping coefficient, >= 0", "0"},
+    {"--K-flexion", "k", "stiffness of the flexion springs alone [N/m], > 0 (fabric bends far more easily than it "
+     "stretches, Chapter 10)",
+     "--K"},
+    {"--damping", "D", "damping coefficient [N s/m], >= 0", "0"},
     {"--damping-model", "projected|report", "damping law", "projected"},
-    {"--springs", "LIST", "comma list of structural,shear,flexion", "all three"},
-    {"--pins", "corners|corner|edge|none", "pinned particles", "corners"},
+    {"--springs", "LIST", "the spring families modelled, a comma list of structural,shear,flexion", "all three"},
+    {"--pins", "corners|corner|edge|none",
+     "pinned particles: the four corners, the one corner (0,0), the whole edge j = N-1, or none", "corners"},
     {"--v0", "vz", "initial z velocity of free particles [m/s]", "-20"},
     {"--bending", "flexion|hinge|quadratic",
-     "bending: the flexion springs alone, or a hinge or quadratic energy on the triangles (Chapter 12)", "flexion"},
+     "bending: the flexion springs alone, or a hinge or quadratic energy on the triangles with rigidity "
+     "--bending-rigidity, added to every force, energy and Newton matrix (Chapter 12)", "flexion"},
     {"--bending-rigidity", "B", "bending rigidity of the hinge and quadratic energies [N m], > 0", "5e-6"},
-    {"--swing", "w", "initial turning rate about the edge j = N-1 [rad/s] (> 0 lifts the far edge)", "0"},
-    {"--dt", "h", "time step [s], > 0", "0.01"},
+    {"--swing", "w",
+     "initial turning rate about the edge j = N-1 [rad/s], on top of --v0: particle (i,j) starts with the z velocity "
+     "w (N-1-j) d (> 0 lifts the far edge)", "0"},
+    {"--dt", "h", "time step [s] of the fixed-step methods, > 0", "0.01"},
     {"--t-end", "T", "simulated time [s], >= dt", "2"},
     {"--frames", "n", "frames.dat holds n+1 frames (at most one per step), 1 <= n <= 100000", "20"},
-    {"--out", "DIR", "output folder", ""},
+    {"--out", "DIR", "the folder the outputs go to", ""},
 };
 
 const CommonFlag* find_common(const std::string& flag) {
@@ -224,7 +230,8 @@ std::string CommandLine::usage() const {
 }
 
 std::string CommandLine::markdown_reference() const {
-  // A table cell holds no '|' (it would end the cell: the character entity stands for it) and shows flags and
+  // A table cell holds no bare '|' (it would end the cell; Doxygen prints an escaped one, where it would print a
+  // character entity literally) and shows flags and
   // values as code, each alternative of a value as code of its own.
   // A flag named in the text ("--dt") is code too: as plain text its "--" would print as a dash.
   const auto cell = [](const std::string& text) {
@@ -238,7 +245,7 @@ std::string CommandLine::markdown_reference() const {
         out += "`" + text.substr(k, end - k) + "`";
         k = end - 1;
       } else {
-        out += text[k] == '|' ? std::string("&#124;") : std::string(1, text[k]);
+        out += text[k] == '|' ? std::string{'\\', '|'} : std::string(1, text[k]);
       }
     }
     return out;

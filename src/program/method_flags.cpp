@@ -83,7 +83,7 @@ void NewtonFlags::add_to(CommandLine& cli, NewtonVariant default_variant) {
                 });
   cli.add_value("--jacobian", stiffness_treatments().accepted("|"),
                 "the Newton matrix's df/dx: exact (default), symmetric (drops the damper's d/dx) or definite "
-                "(Choi & Ko 2002; the default with cg)",
+                "(compressed springs act along their axis only, after Choi & Ko 2002; the default with cg)",
                 [this](const std::string& s) {
                   jacobian_ = stiffness_treatments().parse(s);
                   note("--jacobian");

@@ -77,11 +77,15 @@
   // - an en dash (U+2013) right before a flag name: Doxygen's rendering of `--` outside a code span;
   // - a raw \ref: a Doxygen command inside a string of a listing or where Doxygen does not read commands. The
   //   source browser's pages (NAME_source.html) show each file verbatim, including the code that writes \ref
-  //   into the book's tables, so this one pattern is not applied there.
+  //   into the book's tables, so this one pattern is not applied there;
+  // - a character entity shown as its code (`&#124;`, `&amp;`): Doxygen escapes the ampersand of one written in
+  //   a Markdown table cell. Named ones only of the few HTML always has, since a listing's C++ (`&v;`) looks like
+  //   the others; not applied to the source pages either, whose code may write one.
   const markupPatterns = [
     [/\\\|/, "a backslash before '|' (an escaped table bar shown literally)", true],
     [/(^|[\s(\[`'"])\u2013[a-zA-Z][a-zA-Z0-9-]*/, "an en dash before a flag name ('--' printed as a dash)", true],
     [/\\ref\b/, "raw \\ref markup", false],
+    [/&(#[0-9]+|#x[0-9a-fA-F]+|amp|lt|gt|quot|nbsp);/, "a character entity shown as its code", false],
   ];
   function checkRawMarkup(page, doc) {
     const sourcePage = /_source\.html$/.test(page);

@@ -2,9 +2,10 @@
 # The browser check's test: check_book.sh on fixture/ (both beside this script) must exit 1 and report each defect of
 # bad.html (a formula error, a raw formula command, a missing image, a figure too wide at both window widths, a
 # table too wide at 800 px only, a link to a missing file, a link to a missing anchor, a backslash before '|', an
-# en dash before a flag name, a raw \ref or \f$ in a listing) and nothing else; the good page (MathJax with its AMS
-# extensions, a figure and table that fit, links that resolve, and the look-alikes of the markup defects that are
-# not defects: a '|' in code, en dashes between numbers and names, \| in a formula) must pass.
+# en dash before a flag name, a raw \ref or \f$ in a listing, a character entity shown as its code) and nothing
+# else; the good page (MathJax with its AMS extensions, a figure and table that fit, links that resolve, and the
+# look-alikes of the markup defects that are not defects: a '|' in code, en dashes between numbers and names, \| in
+# a formula) must pass.
 #   tools/check_book/check_book_selftest.sh [MATHJAX_DIR]      (default /usr/share/javascript/mathjax)
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -34,6 +35,7 @@ expect "^bad\.html: a backslash before '\|' .*: '.*elementary\\\\\|pi"
 expect "^bad\.html: an en dash before a flag name .*quick for a short run"
 expect "^bad\.html: raw \\\\ref markup: .*ref_dormand1980"
 expect "^bad\.html: raw formula command in the text: '// the stage weights \\\\f\\\$b_i"
-expect ": 12 problems$"
+expect "^bad\.html: a character entity shown as its code: .*&#124;dv"
+expect ": 13 problems$"
 if [ "$failed" = 0 ]; then echo "selftest: every defect found, nothing else"; fi
 exit "$failed"
