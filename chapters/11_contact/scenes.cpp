@@ -22,14 +22,14 @@ const NameTable<SceneKind>& scene_kinds() {
 // The incline: a 10 x 10 sheet of 2 cm spacing and 0.2 kg/m^2 (m = rho_A d^2), free and at rest. The sphere: a
 // 20 x 20 sheet of 5 cm spacing and the same fabric, dropped flat. The fold: a 30 x 200 strip of 1 cm spacing, the
 // same fabric, standing on the ground. All springs K: the sheet's tensile stiffness is C = 6 K (fabric.hpp), 300
-// N/m for the sheets and 120 N/m for the strip, a soft knit; the strip's is lower so that its lighter particles
+// N/m for the sheets and 120 N/m for the strip; the strip's is lower so that its lighter particles
 // (2e-5 kg) keep the same step, and at d = 1 cm its flexion springs match Chapter 10's bending rigidity
-// B = 5e-6 N m at 20 /m (k = 16 B / (kappa d^2)^2 = 20 N/m). The fastest mode is near omega = sqrt(16 K / m):
-// 3200 /s on the incline, 1300 /s on the sphere, 3600 /s on the strip, so h = 0.5 ms keeps symplectic Euler's
-// h omega below 2. The damping D [N s/m] is a fraction zeta = D / sqrt(2 K m) of a spring's critical damping (its
+// B = 5e-6 N m at 20 /m (k = 16 B / (kappa d^2)^2 = 20 N/m). The fastest mode is near omega = sqrt(10.125 K / m)
+// (Chapter 10's lattice bound): 2500 /s on the incline, 1000 /s on the sphere, 3200 /s on the strip, so h = 0.5 ms
+// keeps symplectic Euler's h omega at most 1.6. The damping D [N s/m] is a fraction zeta = D / sqrt(2 K m) of a spring's critical damping (its
 // two ends, reduced mass m / 2): 0.1 N s/m is zeta = 0.45 on the sphere's sheet. The strip's light particles
-// bound D by the explicit step instead: the fastest damping rate is near 16 D / m, and h times it must stay below
-// 2: D = 0.002 N s/m gives 1600 /s (h c = 0.8) and zeta = 0.07.
+// bound D by the explicit step instead: the fastest damping rate is near 10.125 D / m, and h times it must stay
+// below 2: D = 0.002 N s/m gives 1000 /s (h c = 0.5) and zeta = 0.07.
 std::vector<std::pair<const char*, const char*>> scene_defaults(SceneKind kind) {
   switch (kind) {
     case SceneKind::incline:
