@@ -1,6 +1,8 @@
 // The DIRK engine: stages one after another, each an implicit Euler equation for its velocity.
 #include "integrators/diagonally_implicit_runge_kutta.hpp"
 
+#include <algorithm>
+
 namespace cloth {
 
 DiagonallyImplicitRungeKutta::DiagonallyImplicitRungeKutta(ForceField& field, ImplicitTableau tableau,
@@ -15,7 +17,7 @@ DiagonallyImplicitRungeKutta::DiagonallyImplicitRungeKutta(ForceField& field, Im
   last_force_.resize(n), x_last_.resize(n), v_last_.resize(n);
   if (settings.dense_output_predictor && tableau_.stiffly_accurate()) {
     for (DenseOutput* d : {&last_, &before_}) d->v0 = d->a0 = d->x1 = d->v1 = d->a1 = Vector::Zero(n);
-    v_start_ = Vector::Zero(n);
+    v_start_ = dense_guess_ = force_guess_ = Vector::Zero(n);
   }
   if (tableau_.has_embedded()) error_x_ = Vector::Zero(n), error_v_ = Vector::Zero(n);
   // F_i is needed when a later stage uses it, when the weights combine it (a stiffly accurate method takes the
@@ -64,6 +66,7 @@ bool DiagonallyImplicitRungeKutta::step(double h, Vector& x, Vector& v) {
   // of them beyond its end it magnifies the rounding and Newton errors of its data, and the step control never
   // grows h that fast.
   constexpr double max_reach = 3.0;
+  double dense_miss = 0, force_miss = 0;  // each guess's largest distance from its solved stage
   // [dirk_stages]
   for (int i = 0; i < s; ++i) {
     const auto si = static_cast<std::size_t>(i);
@@ -90,10 +93,15 @@ bool DiagonallyImplicitRungeKutta::step(double h, Vector& x, Vector& v) {
     // The guess (the predictor): the previous step's dense output at the stage's time t + c_i h; without one,
     // the stage equation M (V - v~) = gamma f with the latest known force for f, which is off by gamma times the
     // change of the force since then, O(h^2); without that either, v~ itself.
-    const double theta = previous != nullptr ? 1 + t.c[i] * h / previous->h : 0.0;
-    if (previous != nullptr && theta <= max_reach) predict(*previous, theta, V_[si]);
-    else if (latest_force != nullptr) V_[si] = v_tilde_ + (gamma / m) * *latest_force;
+    if (latest_force != nullptr) V_[si] = v_tilde_ + (gamma / m) * *latest_force;
     else V_[si] = v_tilde_;
+    const double theta = previous != nullptr ? 1 + t.c[i] * h / previous->h : 0.0;
+    const bool both = previous != nullptr && theta <= max_reach;
+    if (both) {
+      force_guess_ = V_[si];
+      predict(*previous, theta, dense_guess_);
+      if (dense_closer_) V_[si] = dense_guess_;
+    }
     if (!newton_.solve(x_tilde_, v_tilde_, gamma, V_[si], need_force_[si])) {
       failure_ = newton_.failure();
       if (s > 1) failure_.reason = "stage " + std::to_string(i + 1) + ": " + failure_.reason;
@@ -103,6 +111,10 @@ bool DiagonallyImplicitRungeKutta::step(double h, Vector& x, Vector& v) {
     if (need_force_[si] || forces_free) {
       F_[si] = newton_.force();
       latest_force = &F_[si];
+    }
+    if (both) {
+      dense_miss = std::max(dense_miss, (V_[si] - dense_guess_).lpNorm<Eigen::Infinity>());
+      force_miss = std::max(force_miss, (V_[si] - force_guess_).lpNorm<Eigen::Infinity>());
     }
   }
   // [dirk_stages]
@@ -136,6 +148,7 @@ bool DiagonallyImplicitRungeKutta::step(double h, Vector& x, Vector& v) {
     x_last_ = x;
     v_last_ = v;
   }
+  if (dense_miss > 0 || force_miss > 0) dense_closer_ = dense_miss < force_miss;
   if (dense) record_dense_output(h, x, v, previous);
   ++counters_.steps;
   return true;
