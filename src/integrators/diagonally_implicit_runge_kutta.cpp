@@ -32,7 +32,7 @@ DiagonallyImplicitRungeKutta::DiagonallyImplicitRungeKutta(ForceField& field, Im
 }
 
 // [dense_output_predictor]
-void DiagonallyImplicitRungeKutta::predict(const DenseOutput& d, double theta, Vector& V) const {
+void DiagonallyImplicitRungeKutta::predict(const DenseOutput& d, double theta, Vector& V) {
   // The cubic Hermite interpolant of v on the step d (Hairer, Norsett & Wanner 1993, II.6): the one cubic with
   // v and v' = a at both ends, at t0 + theta h_d. Beyond the step (theta > 1) it extrapolates, with an error
   // O(h^4) for a smooth motion.

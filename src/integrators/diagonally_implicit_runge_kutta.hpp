@@ -61,7 +61,7 @@ class DiagonallyImplicitRungeKutta : public NewtonStepper {
   Vector dense_guess_, force_guess_;
   bool dense_closer_ = true;
   // The predicted stage velocity at the time t0 + theta h_d of the step d (theta = 1 at its end).
-  void predict(const DenseOutput& d, double theta, Vector& V) const;
+  static void predict(const DenseOutput& d, double theta, Vector& V);
   // Keeps the finished step (length h, end state x, v) as the last dense output; `previous` is the one it
   // continued, if any.
   void record_dense_output(double h, const Vector& x, const Vector& v, const DenseOutput* previous);
