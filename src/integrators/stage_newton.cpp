@@ -76,6 +76,17 @@ StageNewton::StageNewton(ForceField& field, NewtonSettings settings, StepCounter
   if (settings_.solver == LinearSolverKind::ldlt) block_.analyze(A_, BlockLDU::Symmetry::symmetric);
   if (settings_.solver == LinearSolverKind::ldu) block_.analyze(A_, BlockLDU::Symmetry::general);
   if (settings_.solver == LinearSolverKind::lu) lu_.analyzePattern(A_);
+  // Modified Newton keeps its Jacobian in the pattern's value arrays, beside the mass diagonal M.
+  keeps_jacobian_ = settings_.keep_jacobian && settings_.variant == NewtonVariant::modified &&
+                    !settings_.one_iteration();
+  if (keeps_jacobian_) {
+    mass_ = Vector::Zero(A_.nonZeros());
+    jacobian_v_ = mass_, jacobian_x_ = mass_;
+    minus_ = A_;
+    for (int k = 0; k < A_.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator it(A_, k); it; ++it)
+        if (it.row() == k) mass_[&it.value() - A_.valuePtr()] = field.scene().params().mass;
+  }
 }
 
 namespace {
@@ -83,29 +94,52 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Modified Newton's refresh rules, after the defaults SUNDIALS' ARKODE documents for its Newton iteration
-// (Reynolds et al., ARKODE User Guide, "Nonlinear solver methods"): a new matrix when gamma has changed by more
-// than dgmax = 20 % since the last one, or msbp = 20 steps have passed, or the iteration converges slowly.
-constexpr double gamma_change_limit = 0.2;
-constexpr int steps_between_refreshes = 20;
-// The observed contraction |dv_k| / |dv_{k-1}| above which the kept matrix is declared stale. At 0.25 every
-// iteration still gains more than half a digit; a slower chord iteration costs more force evaluations than a
-// fresh factorization saves.
-constexpr double slow_contraction = 0.25;
 // The potential line search's smallest step fraction: a descending update decreases Phi long before this, so
 // reaching it means the update does not descend (an indefinite matrix) or Phi is not finite along it.
 constexpr double min_step_fraction = 0x1p-30;
 }  // namespace
 
-bool StageNewton::refresh(const Vector& V, double gamma, StiffnessTreatment treatment) {
+void StageNewton::assemble(const Vector& V, double gamma, StiffnessTreatment treatment, SparseMatrix& A) {
+  if (settings_.minimises()) field_.frozen_newton_matrix(x1_, gamma, treatment, A);
+  else field_.newton_matrix(x1_, V, gamma, treatment, A);
+}
+
+// [jacobian_parts]
+void StageNewton::evaluate_jacobian(const Vector& V, double gamma, StiffnessTreatment treatment) {
+  // J(gamma) = M + gamma C1 + gamma^2 C2 is a quadratic in gamma with the pattern's entries as coefficients, so
+  // J(gamma) and J(-gamma) give both parts: C1 = (J(gamma) - J(-gamma)) / (2 gamma) is -D (df/dv, or the frozen
+  // dampers' Hessian negated) and C2 = ((J(gamma) + J(-gamma)) / 2 - M) / gamma^2 is -K (df/dx, or the spring
+  // Hessian negated, with the treatment applied). Taken at the gamma in use, the three terms are of the sizes
+  // they have in the matrices formed from them, and A_ keeps J(gamma) as assembled.
+  assemble(V, gamma, treatment, A_);
+  assemble(V, -gamma, treatment, minus_);
+  using Values = Eigen::Map<const Vector>;
+  const Values plus(A_.valuePtr(), A_.nonZeros()), minus(minus_.valuePtr(), minus_.nonZeros());
+  jacobian_v_ = (plus - minus) / (2 * gamma);
+  jacobian_x_ = (0.5 * (plus + minus) - mass_) / (gamma * gamma);
+  has_jacobian_ = true;
+  jacobian_treatment_ = treatment;
+  jacobian_age_ = 0;
+}
+// [jacobian_parts]
+
+bool StageNewton::refresh(const Vector& V, double gamma, StiffnessTreatment treatment, bool evaluate) {
   using clock = std::chrono::steady_clock;
   linear_failure_.clear();
   linear_failure_kind_ = StepFailureKind::none;
   factored_ = false;
   auto t0 = clock::now();
-  if (settings_.minimises()) field_.frozen_newton_matrix(x1_, gamma, treatment, A_);
-  else field_.newton_matrix(x1_, V, gamma, treatment, A_);
-  ++counters_.jacobian_assemblies;
+  evaluated_ = !keeps_jacobian_ || evaluate || !has_jacobian_ || jacobian_treatment_ != treatment;
+  if (!keeps_jacobian_) {
+    assemble(V, gamma, treatment, A_);
+    ++counters_.jacobian_assemblies;
+  } else if (evaluated_) {
+    evaluate_jacobian(V, gamma, treatment);
+    ++counters_.jacobian_assemblies;
+  } else {
+    // The kept Jacobian with the new gamma: M - gamma D - gamma^2 K, no force pass.
+    Eigen::Map<Vector>(A_.valuePtr(), A_.nonZeros()) = mass_ + gamma * jacobian_v_ + (gamma * gamma) * jacobian_x_;
+  }
   timing_.assembly += seconds_since(t0);
   t0 = clock::now();
   switch (settings_.solver) {
@@ -114,6 +148,7 @@ bool StageNewton::refresh(const Vector& V, double gamma, StiffnessTreatment trea
       ++counters_.factorizations;
       if (!block_.factorize(A_)) {
         timing_.factorization += seconds_since(t0);
+        has_jacobian_ = false;  // a matrix formed from it cannot be factored: the next one starts afresh
         linear_failure_kind_ = StepFailureKind::factorization_singular;
         linear_failure_ = "a pivot block is singular";
         return false;
@@ -124,6 +159,7 @@ bool StageNewton::refresh(const Vector& V, double gamma, StiffnessTreatment trea
       ++counters_.factorizations;
       if (lu_.info() != Eigen::Success) {
         timing_.factorization += seconds_since(t0);
+        has_jacobian_ = false;  // a matrix formed from it cannot be factored: the next one starts afresh
         linear_failure_kind_ = StepFailureKind::factorization_singular;
         linear_failure_ = "SparseLU could not factorize the matrix";
         return false;
@@ -133,6 +169,7 @@ bool StageNewton::refresh(const Vector& V, double gamma, StiffnessTreatment trea
       // The block-Jacobi preconditioner: each particle's 3x3 diagonal block inverted, O(n).
       if (!cg_.compute(A_)) {
         timing_.factorization += seconds_since(t0);
+        has_jacobian_ = false;  // a matrix formed from it cannot be factored: the next one starts afresh
         linear_failure_kind_ = StepFailureKind::factorization_singular;
         linear_failure_ = "a diagonal block of the preconditioner is singular";
         return false;
@@ -262,9 +299,19 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
   residuals_.push_back(residual);
   if (minimising) potentials_.push_back(phi_);
   double update = INFINITY, previous_update = INFINITY;
-  // Modified Newton keeps the matrix it has unless gamma moved, it is old, or it was never made.
-  bool stale = !modified || !factored_ || std::abs(gamma / factored_gamma_ - 1) > gamma_change_limit ||
-               steps_since_refresh_ >= steps_between_refreshes;
+  // [reuse_rule]
+  // Modified Newton keeps the matrix it has unless it was never made, gamma moved beyond max_gamma_change, or it
+  // is old and gamma has changed at all (with a kept Jacobian a refactor at the same gamma gives the same matrix).
+  // A new matrix is formed from the kept Jacobian unless that has served steps_between_jacobians steps; otherwise
+  // the Jacobian is evaluated afresh only below, when a matrix formed from it converges slowly or does not
+  // descend.
+  const bool gamma_moved = factored_ && std::abs(gamma / factored_gamma_ - 1) > max_gamma_change;
+  const bool matrix_old = steps_since_refresh_ >= steps_between_factorizations &&
+                          (!keeps_jacobian_ || gamma != factored_gamma_);
+  const bool jacobian_old = keeps_jacobian_ && jacobian_age_ >= steps_between_jacobians;
+  bool stale = !modified || !factored_ || gamma_moved || matrix_old || jacobian_old;
+  bool evaluate = !keeps_jacobian_ || jacobian_old;
+  // [reuse_rule]
   for (int k = 0;; ++k) {
     const double scale = 1.0 + V.lpNorm<Eigen::Infinity>();
     if (!std::isfinite(residual)) break;
@@ -290,27 +337,32 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     // the Hessian H has negative curvature of size M / gamma^2 (compressed springs; hinges folded away from flat,
     // whose theta d^2 theta / dx^2 term is indefinite). LDL^T then meets a zero pivot. That iteration takes the
     // definite matrix, which has no negative part, and counts it beside the non-descending ones below.
-    const auto refresh_or_definite = [&] {
-      if (refresh(V, gamma, settings_.treatment)) return true;
+    const auto refresh_or_definite = [&](bool evaluate_jacobian) {
+      if (refresh(V, gamma, settings_.treatment, evaluate_jacobian)) return true;
       if (settings_.treatment == StiffnessTreatment::definite ||
           linear_failure_kind_ != StepFailureKind::factorization_singular)
         return false;
       ++counters_.definite_fallbacks;
-      return refresh(V, gamma, StiffnessTreatment::definite);
+      return refresh(V, gamma, StiffnessTreatment::definite, true);
     };
     // [singular_fallback]
+    // `fresh`: this iteration's matrix is the Newton matrix at this iterate, not one kept or formed from a kept
+    // Jacobian.
     bool fresh = stale;
-    if (fresh && !refresh_or_definite()) {
-      fail_linear(k + 1, residual);
-      counters_.newton_iterations += k + 1;
-      return false;
+    if (stale) {
+      if (!refresh_or_definite(evaluate)) {
+        fail_linear(k + 1, residual);
+        counters_.newton_iterations += k + 1;
+        return false;
+      }
+      fresh = evaluated_;
     }
     stale = !modified;
     bool solved = linear_solve(r_, dv_, k == 0);
     const auto descends = [&] { return solved && r_.dot(dv_) > 0; };
-    // A kept matrix whose update does not descend is first replaced by a fresh one (modified Newton).
+    // A kept matrix whose update does not descend is first replaced by a fresh one, with a new Jacobian.
     if (minimising && !fresh && !descends()) {
-      if (!refresh_or_definite()) {
+      if (!refresh_or_definite(true)) {
         fail_linear(k + 1, residual);
         counters_.newton_iterations += k + 1;
         return false;
@@ -324,7 +376,7 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     // positive definite and so always descends; full Newton's next iteration tries the exact one again, which
     // near a minimiser of Phi is positive definite and converges quadratically.
     if (minimising && settings_.treatment != StiffnessTreatment::definite && !descends()) {
-      if (!refresh(V, gamma, StiffnessTreatment::definite)) {
+      if (!refresh(V, gamma, StiffnessTreatment::definite, true)) {
         fail_linear(k + 1, residual);
         counters_.newton_iterations += k + 1;
         return false;
@@ -374,7 +426,7 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
       residuals_.push_back(residual);
       if (minimising) potentials_.push_back(phi_);
       fractions_.push_back(0.0);
-      stale = true;
+      stale = evaluate = true;
       continue;
     }
     double step_fraction = 1.0;
@@ -417,8 +469,9 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     fractions_.push_back(step_fraction);
     previous_update = update;
     update = step_fraction * dv_.lpNorm<Eigen::Infinity>();
-    // A kept matrix that contracts slowly costs more iterations than a new factorization (SUNDIALS' crdown).
-    if (modified && !fresh && update > slow_contraction * previous_update) stale = true;
+    // A kept matrix that contracts slowly costs more iterations than a new factorization (SUNDIALS' crdown), and
+    // one formed from a kept Jacobian then needs a new Jacobian too.
+    if (modified && !fresh && update > slow_contraction * previous_update) stale = evaluate = true;
   }
   // [newton_loop]
   failure_ = {StepFailureKind::newton_not_converged,

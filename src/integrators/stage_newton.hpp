@@ -75,6 +75,16 @@ struct NewtonSettings {
   /// iteration earlier (Hairer & Wanner 1996, IV.8). For the controlled runs of Chapter 9, whose tol is tied to
   /// the error tolerance.
   bool estimate_test = false;
+  /// Modified Newton keeps the Jacobian (its stiffness and damping parts K and D) apart from the Newton matrix
+  /// M - gamma D - gamma^2 K, so that a new gamma is first met by refactoring with the kept Jacobian, which is
+  /// evaluated again only when that matrix fails to converge fast or has served steps_between_jacobians steps
+  /// (SUNDIALS' rule, StageNewton). false evaluates both together at every refresh, the book's first rule.
+  bool keep_jacobian = true;
+  /// A diagonally implicit method starts each stage's Newton iteration from the previous step's dense output,
+  /// the cubic Hermite interpolant of its velocities and accelerations, extrapolated to the stage's time; false
+  /// starts it from the stage equation with the latest known force (DiagonallyImplicitRungeKutta). The
+  /// one-iteration step never uses it: its single update defines the method from the step's own state.
+  bool dense_output_predictor = true;
 
   /// Whether the iteration is the one-iteration step (variant one, or a limit of one iteration).
   [[nodiscard]] bool one_iteration() const { return variant == NewtonVariant::one || max_iterations == 1; }
@@ -102,10 +112,24 @@ void validate(const NewtonSettings& settings, const Scene& scene);
 /// The work is counted in the owning stepper's StepCounters.
 class StageNewton {
  public:
+  /// Modified Newton's reuse rule, with the defaults SUNDIALS documents for CVODE and ARKODE (Hindmarsh et al.,
+  /// CVODE and ARKODE User Guides, "Nonlinear solver" and "Linear solver setup"): the Newton matrix is refactored
+  /// when gamma has moved by more than max_gamma_change since its factorization (dgmax: 0.3 in CVODE, 0.2 in
+  /// ARKODE), when steps_between_factorizations steps have passed and gamma has changed at all (msbp), or when
+  /// the kept matrix contracts slower than slow_contraction (crdown); the Jacobian is evaluated again only when a
+  /// matrix formed from the kept one fails that way, or after steps_between_jacobians steps (msbj, CVODE's 51).
+  static constexpr double max_gamma_change = 0.2;
+  static constexpr int steps_between_factorizations = 20;
+  static constexpr int steps_between_jacobians = 51;
+  /// The observed contraction |dv_k| / |dv_{k-1}| above which a kept matrix is declared stale. At 0.25 every
+  /// iteration still gains more than half a digit; a slower chord iteration costs more force evaluations than a
+  /// fresh factorization saves.
+  static constexpr double slow_contraction = 0.25;
+
   StageNewton(ForceField& field, NewtonSettings settings, StepCounters& counters);
 
-  /// Starts a new time step (modified Newton refreshes its matrix after a number of steps).
-  void begin_step() { ++steps_since_refresh_; }
+  /// Starts a new time step (modified Newton refreshes its matrix and its Jacobian after a number of steps).
+  void begin_step() { ++steps_since_refresh_, ++jacobian_age_; }
 
   /// Solves the stage from the guess in V. On success V is the stage velocity, position() = x~ + gamma V and,
   /// when `need_force`, force() = f(position(), V). On failure returns false with failure() set; V is then
@@ -135,9 +159,14 @@ class StageNewton {
   void reset_timing() { timing_ = {}; }
 
  private:
-  // Assembles J at (x1_, V) for gamma with `treatment` and factorizes it (or builds CG's preconditioner); false
-  // on failure.
-  bool refresh(const Vector& V, double gamma, StiffnessTreatment treatment);
+  // Makes the Newton matrix J for gamma with `treatment` and factorizes it (or builds CG's preconditioner); false
+  // on failure. With a kept Jacobian, J is formed from it unless `evaluate` asks for a new one at (x1_, V) (or the
+  // kept one has another treatment); otherwise J is assembled at (x1_, V) directly.
+  bool refresh(const Vector& V, double gamma, StiffnessTreatment treatment, bool evaluate);
+  // Evaluates the Jacobian's two parts at (x1_, V), leaving J for gamma in A_.
+  void evaluate_jacobian(const Vector& V, double gamma, StiffnessTreatment treatment);
+  // Assembles J for gamma (any sign) at (x1_, V) into `A`.
+  void assemble(const Vector& V, double gamma, StiffnessTreatment treatment, SparseMatrix& A);
   // dv = J^{-1} rhs with the matrix last refreshed.
   bool linear_solve(const Vector& rhs, Vector& dv, bool warm_start);
   // Sets x1_ = x~ + gamma V, f_ and r_ = -r(V), and returns |r|_inf; when minimising, also phi_ = Phi(V) and
@@ -168,6 +197,15 @@ class StageNewton {
   double factored_gamma_ = 0;
   double contraction_ = 1;  // the last contraction rate observed, for the estimate test's first iteration
   int steps_since_refresh_ = 0;
+  // The kept Jacobian, as the values of J(gamma) = M + gamma C1 + gamma^2 C2 in A_'s pattern: mass_ = M,
+  // jacobian_v_ = C1 = -D (the damping part), jacobian_x_ = C2 = -K (the stiffness part); how many steps ago it
+  // was evaluated and with which treatment. minus_ is the scratch matrix J(-gamma) of an evaluation.
+  bool keeps_jacobian_ = false, has_jacobian_ = false;
+  bool evaluated_ = false;  // whether the last refresh evaluated the Jacobian (at the iterate it factored)
+  StiffnessTreatment jacobian_treatment_ = StiffnessTreatment::exact;
+  int jacobian_age_ = 0;
+  Vector mass_, jacobian_v_, jacobian_x_;
+  SparseMatrix minus_;
 };
 
 }  // namespace cloth

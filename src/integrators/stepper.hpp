@@ -12,7 +12,8 @@ namespace cloth {
 struct StepCounters {
   long long steps = 0;
   long long rhs_evaluations = 0;      ///< evaluations of f(x, v)
-  long long jacobian_assemblies = 0;  ///< Newton matrices assembled
+  long long jacobian_assemblies = 0;  ///< Jacobians evaluated (K and D at a state): modified Newton forms several
+                                      ///< Newton matrices from one (StageNewton)
   long long factorizations = 0;       ///< numeric sparse factorizations
   long long linear_solves = 0;
   long long cg_iterations = 0;        ///< conjugate-gradient iterations, summed over solves
