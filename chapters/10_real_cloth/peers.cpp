@@ -38,21 +38,6 @@ struct Row {
   double seconds = 0, error = NAN;
 };
 
-// Runs `body` at least once and until `runs` runs or `budget` CPU seconds are spent; keeps the fastest time.
-template <class Body>
-double best_time(int runs, double budget, Body&& body) {
-  double best = INFINITY, spent = 0;
-  for (int k = 0; k < runs && (k == 0 || spent < budget); ++k) {
-    const double t0 = thread_cpu_seconds();
-    body();
-    const double t = thread_cpu_seconds() - t0;
-    best = std::min(best, t);
-    spent += t;
-    throw_if_interrupted();
-  }
-  return best;
-}
-
 // The step T / steps as the page writes it: "1/60" when a second holds a whole number of them.
 std::string step_of(long long steps) {
   const double per_second = static_cast<double>(steps) / T;
@@ -88,8 +73,14 @@ void print_row(const Row& r) {
 void record(Bench& b, Row row, const std::function<Outcome()>& run, OdeSystem& system) {
   const double budget = b.quick ? 0.3 : 2.0;  // repeat a configuration while its runs have cost less than this
   Outcome out;
-  row.seconds = best_time(b.runs, budget, [&] { out = run(); });
-  throw_if_interrupted();
+  // Timed as every program of the book times (program/timing.hpp), the fastest run kept.
+  row.seconds = time_runs(
+                    [&] {
+                      out = run();
+                      throw_if_interrupted();
+                    },
+                    {.runs = b.runs, .budget = budget})
+                    .fastest_cpu;
   row.ok = out.ok;
   row.note = out.note;
   if (row.steps == 0) row.steps = out.steps;

@@ -39,16 +39,19 @@ Timing time_runs(const std::function<void()>& body, const TimingPlan& plan) {
     throw std::invalid_argument("time_runs: runs and repeat must be at least 1, warmup at least 0");
   for (int k = 0; k < plan.warmup; ++k)
     for (int r = 0; r < plan.repeat; ++r) body();
-  std::vector<double> cpu(static_cast<std::size_t>(plan.runs)), wall(cpu.size());
-  for (std::size_t k = 0; k < cpu.size(); ++k) {
+  std::vector<double> cpu, wall;
+  double spent = 0;
+  for (int k = 0; k < plan.runs && (k == 0 || spent < plan.budget); ++k) {
     const double w0 = wall_seconds();
     const double c0 = thread_cpu_seconds();
     for (int r = 0; r < plan.repeat; ++r) body();
-    cpu[k] = (thread_cpu_seconds() - c0) / plan.repeat;
-    wall[k] = (wall_seconds() - w0) / plan.repeat;
+    const double used = thread_cpu_seconds() - c0;
+    spent += used;
+    cpu.push_back(used / plan.repeat);
+    wall.push_back((wall_seconds() - w0) / plan.repeat);
   }
   Timing t;
-  t.runs = plan.runs;
+  t.runs = static_cast<int>(cpu.size());
   t.fastest_cpu = *std::min_element(cpu.begin(), cpu.end());
   t.slowest_cpu = *std::max_element(cpu.begin(), cpu.end());
   t.median_cpu = median_of(cpu);

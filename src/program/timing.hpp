@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 
 namespace cloth {
 
@@ -23,6 +24,9 @@ struct TimingPlan {
   int runs = 5;     ///< timed runs summarised below
   int warmup = 0;   ///< untimed runs first (caches, page faults, lazily built tables)
   int repeat = 1;   ///< calls per timed run, for a body too short for the clock; the times are per call
+  /// Processor seconds after which no further timed run starts (at least one always runs): for a ladder of
+  /// settings whose slow rungs a budget would otherwise make last minutes. The Timing says how many ran.
+  double budget = std::numeric_limits<double>::infinity();
 };
 
 /// The seconds per call of repeated runs: thread processor time (the figure to compare) and wall time.
@@ -32,7 +36,7 @@ struct Timing {
   double slowest_cpu = 0;   ///< with fastest_cpu, the spread of the timings
   double fastest_wall = 0;
   double median_wall = 0;
-  int runs = 0;
+  int runs = 0;             ///< timed runs made (fewer than the plan's when its budget ran out)
 };
 
 /// Times `body` as `plan` says. No input or output belongs inside the body: it would be timed too.
