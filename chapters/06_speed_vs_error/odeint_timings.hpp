@@ -24,7 +24,7 @@ std::vector<double> plain_rk4(const PlainFabric& fabric, double h, double T);
 /// The lowest z of the positions x (x, y, z of each particle in turn, `size` numbers).
 double lowest_z(const double* x, long size);
 
-/// The flags that give another program this scene, step and horizon (--dt and --t-end last).
+/// The flags that give another program this scene, step and horizon (`--dt` and `--t-end` last).
 std::vector<std::string> scene_arguments(const cloth::SceneParams& s, double h, double T);
 
 /// The first comparison: the reader's program (`self --program plain`) and the program `ch03` with its outputs

@@ -92,7 +92,7 @@ void practitioner(const Settings& s, const Curves& c, const std::vector<std::str
 /// map_1mm.md and their data).
 void cost_map(const Settings& s, const std::map<double, Curves>& curves, const std::vector<std::string>& methods);
 
-/// Every file the program writes without --curtain: `quick`, the reduced sweep's; else the full sweep's.
+/// Every file the program writes without `--curtain`: `quick`, the reduced sweep's; else the full sweep's.
 cloth::OutputList real_cloth_outputs(bool quick);
 
 }  // namespace ch10

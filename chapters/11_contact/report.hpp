@@ -10,7 +10,7 @@ namespace ch11 {
 /// Adds the studies' own flags (`--quick`) to `cli`.
 void add_report_flags(cloth::CommandLine& cli);
 
-/// The files --report-runs writes into --out, declared once (program/output_spec.hpp).
+/// The files `--report-runs` writes into `--out`, declared once (program/output_spec.hpp).
 [[nodiscard]] cloth::OutputList report_outputs();
 
 /// Runs the studies into opt.run.out_dir; the command is recorded in each fragment. Returns the exit status.
