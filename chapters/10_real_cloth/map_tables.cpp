@@ -33,6 +33,7 @@ struct Row {
 struct Part {
   MapPart part;
   double motion = 0;  ///< over the frames [m]
+  double T = 0;       ///< the horizon [s]
   std::vector<Row> rows;
 };
 
@@ -46,6 +47,7 @@ Part read_part(const std::string& path) {
   while (header >> key && header >> scene) values[key] = scene;
   p.part = parse_map_part(values["part"]);
   p.motion = std::stod(values["motion_over_frames"]);
+  p.T = std::stod(values["T"]);
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;
     std::istringstream s(line);
@@ -136,13 +138,13 @@ std::vector<std::string> write_map_tables(const std::string& dir, const std::str
     const auto add = [&](const MapPart& part, std::vector<std::string> cells) {
       rows.push_back({{part.n, part.K}, std::move(cells)});
     };
-    MarkdownTable t({"grid", "K [N/m]", "motion over the frames", "accuracy over the frames", "fastest of the book",
+    MarkdownTable t({"grid", "K [N/m]", "motion over the frames to T", "accuracy over the frames", "fastest of the book",
                      "fastest peer", "fastest implicit or position-based"},
                     "lrrllll");
     for (const Part& p : parts) {
       if (p.part.scene != scene) continue;
       const std::string grid = format("%d x %d", p.part.n, p.part.n), K = stiffness_text(p.part.K);
-      const std::string motion = format("%.3g m", p.motion);
+      const std::string motion = format("%.3g m to %.2g s", p.motion, p.T);
       for (const auto& [name, level] : std::vector<std::pair<std::string, double>>{
                {format("plausible: %.3g cm", 5 * p.motion), 0.05 * p.motion}, {"1 cm", 1e-2}, {"1 mm", 1e-3}}) {
         if (accuracy_verdict(0, p.motion, level) == AccuracyVerdict::met_by_rest) {
