@@ -150,12 +150,21 @@ struct SundialsSetup {
 };
 
 // [escape_guard]
+std::string format_cap_note(double cap, long steps, double t) {
+  return "stopped at the run cap of " + format_number(cap, 3) + " s of CPU at step " + std::to_string(steps + 1) +
+         " after t = " + format_number(t, 3) + " s";
+}
+
 /// A state with a coordinate beyond 1000 m (a position of a 1 m cloth, or a velocity) has diverged: CVODE at
 /// tolerance 0.1 on the stiff curtain otherwise follows such a state for minutes, to 1e7 m. The right-hand side
 /// then returns SUNDIALS' recoverable error (a Newton iterate far out is retried with a smaller step, as the
 /// library does for any recoverable failure); a run that ends on it is reported as diverged.
 constexpr double escape_radius = 1e3;
 thread_local bool escaped = false;
+/// The thread CPU time at which the running SUNDIALS integration is stopped (set_sundials_run_cap).
+thread_local double cpu_deadline = INFINITY;
+thread_local double run_cap = INFINITY;
+thread_local bool capped = false;
 
 /// Whether the run ended on the guard's refusals (the flag values are shared by CVODE and ARKODE).
 bool ended_by_escape(int flag) {
@@ -164,6 +173,10 @@ bool ended_by_escape(int flag) {
 }
 
 int guarded_rhs(realtype t, N_Vector y, N_Vector ydot, void* data) {
+  if (thread_cpu_seconds() > cpu_deadline) {
+    capped = true;
+    return -1;  // unrecoverable: the integration ends here
+  }
   const Eigen::Map<const Eigen::VectorXd> state(N_VGetArrayPointer(y), N_VGetLength(y));
   if (!(state.cwiseAbs().maxCoeff() < escape_radius)) {
     escaped = true;
@@ -173,7 +186,21 @@ int guarded_rhs(realtype t, N_Vector y, N_Vector ydot, void* data) {
 }
 // [escape_guard]
 
+/// Arms the guard for one SUNDIALS integration: no escape seen, the CPU deadline run_cap from now.
+void arm_guard() {
+  escaped = capped = false;
+  cpu_deadline = thread_cpu_seconds() + run_cap;
+}
+
+/// The note of a SUNDIALS run that ended with `flag` after `steps` steps at t.
+std::string sundials_note(int flag, bool cvode, long steps, double t) {
+  if (capped) return format_cap_note(run_cap, steps, t);
+  return failure_note(sundials_end(flag, cvode, !ended_by_escape(flag)), steps, t);
+}
+
 }  // namespace
+
+void set_sundials_run_cap(double seconds) { run_cap = seconds; }
 
 MapRun cvode_run(const Scene& scene, Forces forces, double tol, int max_order, double T) {
   return timed([&] {
@@ -182,7 +209,7 @@ MapRun cvode_run(const Scene& scene, Forces forces, double tol, int max_order, d
     MapRun run;
     void* mem = CVodeCreate(CV_BDF, s.context);
     check(CVodeSetErrFile(mem, nullptr), "CVodeSetErrFile");
-    escaped = false;
+    arm_guard();
     check(CVodeInit(mem, guarded_rhs, 0.0, s.y), "CVodeInit");
     check(CVodeSStolerances(mem, tol, tol), "CVodeSStolerances");
     check(CVodeSetUserData(mem, system.get()), "CVodeSetUserData");
@@ -201,7 +228,7 @@ MapRun cvode_run(const Scene& scene, Forces forces, double tol, int max_order, d
       run.steps = steps;
       if (flag < 0) {
         run.ok = false;
-        run.note = failure_note(sundials_end(flag, true, !ended_by_escape(flag)), steps, t);
+        run.note = sundials_note(flag, true, steps, t);
         break;
       }
       run.frames.push_back(frame_of(*system, s.y0, target));
@@ -217,7 +244,7 @@ MapRun arkode_run(const Scene& scene, Forces forces, double h, double T) {
     auto system = system_for(scene, forces);
     SundialsSetup s(*system);
     MapRun run;
-    escaped = false;
+    arm_guard();
     void* mem = ARKStepCreate(nullptr, guarded_rhs, 0.0, s.y, s.context);
     check(ARKStepSetErrFile(mem, nullptr), "ARKStepSetErrFile");
     check(ARKStepSetUserData(mem, system.get()), "ARKStepSetUserData");
@@ -242,7 +269,7 @@ MapRun arkode_run(const Scene& scene, Forces forces, double h, double T) {
       run.steps = steps;
       if (flag < 0) {
         run.ok = false;
-        run.note = failure_note(sundials_end(flag, false, !ended_by_escape(flag)), steps, t);
+        run.note = sundials_note(flag, false, steps, t);
         break;
       }
       run.frames.push_back(frame_of(*system, s.y0, target));

@@ -35,6 +35,10 @@ MapRun odeint_dopri5_run(const cloth::Scene& scene, Forces forces, double tol, d
 /// CVODE's BDF (orders up to max_order) with KLU on the definite Jacobian, rtol = atol = tol, stopped at each
 /// frame (CVodeSetStopTime) so that every frame is its own solution, not its interpolant.
 MapRun cvode_run(const cloth::Scene& scene, Forces forces, double tol, int max_order, double T);
+/// A SUNDIALS run (CVODE or ARKODE) started after this call is stopped once it has used `seconds` of thread CPU
+/// time, and reported so: an adaptive run's time cannot be predicted from the rung before it (CVODE at
+/// tolerance 0.1 on the stiff curtain takes minutes, at 0.01 seconds).
+void set_sundials_run_cap(double seconds);
 /// ARKODE's one-stage backward Euler at the fixed step h, Newton with KLU on the definite Jacobian (up to 20
 /// iterations, the Jacobian evaluated every step), one step at a time to each frame.
 MapRun arkode_run(const cloth::Scene& scene, Forces forces, double h, double T);

@@ -162,6 +162,7 @@ double measure_part(const MapPart& part, const SweepPlan& plan, const std::strin
       const bool plausible = last_error <= 0.05 * motion.over_frames;
       const double prune = (plausible ? 1 : 10) * plan.prune_factor * best_to_finest;
       if (k > 0 && (2 * last_seconds > plan.run_budget || 2 * last_seconds > prune)) break;
+      set_sundials_run_cap(std::min(plan.run_budget, std::max(10.0, plan.sundials_cap_factor * best_to_finest)));
       const MapRun run = series.run(k);
       TrajectoryError error{NAN, NAN, 0};
       if (run.ok) error = trajectory_error(run.frames, ref.frames);

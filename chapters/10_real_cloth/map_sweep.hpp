@@ -36,6 +36,9 @@ struct SweepPlan {
   /// A rung predicted slower than this many times the fastest run that already reached 1 mm is not started: it
   /// could win no cell of the book's or the peers' columns, only the implicit column, where it is then predicted.
   double prune_factor = 20;
+  /// A SUNDIALS run is stopped after this many times the fastest run that reached 1 mm (at least 10 s, at most
+  /// the budget): its time is not predictable from the rung before it, and slower than that it wins no cell.
+  double sundials_cap_factor = 50;
 };
 
 /// Measures `part` and writes `DIR/map_PART.dat`; `command` is the line that measures it again. Returns the
