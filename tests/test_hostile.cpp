@@ -197,7 +197,7 @@ std::vector<ProgramOutputs> every_output() {
       {"ch12_bending",
        {"--report-runs"},
        {"shapes.dat", "convergence.dat", "convergence.md", "split.md", "peirce.md", "fabrics.md", "cost.md",
-        "stable_step.md"}},
+        "stable_step.md", "rolled.md"}},
 #endif
   };
   programs.insert(programs.end(), listed.begin(), listed.end());
@@ -239,7 +239,7 @@ constexpr std::size_t folder_cases_ch10_peers = 4 + 1;
 constexpr std::size_t folder_cases_ch10_peers = 0;
 #endif
 #ifdef CLOTH_HAVE_CH12_BENDING
-constexpr std::size_t folder_cases_ch12 = (2 + 1) + (8 + 1);
+constexpr std::size_t folder_cases_ch12 = (2 + 1) + (9 + 1);
 #else
 constexpr std::size_t folder_cases_ch12 = 0;
 #endif

@@ -10,6 +10,7 @@
 #include "program/output.hpp"
 #include "program/timing.hpp"
 
+#include <array>
 #include <cmath>
 #include <functional>
 
@@ -74,6 +75,8 @@ void hash_benchmark(const Study& study) {
   MarkdownTable table({"strip", "particles", "forces [ms]", "step with a build [ms]", "/ forces",
                        "step without [ms]", "/ forces", "distances tested per particle", "candidates per particle",
                        "brute force [ms]"}, "lrrrrrrrrr");
+  // Each time at the first and the last strip, for the growth exponent p of time ~ particles^p.
+  std::array<double, 4> first{}, last{};
   for (const int n : {100, 200, 400, 800}) {
     const Grid grid{30, n, 0.01};
     const BuiltScene b = build_scene(SceneKind::fold, ContactFlags{}, &grid);
@@ -100,7 +103,11 @@ void hash_benchmark(const Study& study) {
                    format_fixed(kept / forces, 2),
                    format_fixed(static_cast<double>(w.distance_tests) / static_cast<double>(w.builds) / particles, 1),
                    format_fixed(static_cast<double>(self.candidates().size()) / particles, 2), format_fixed(brute, 1)});
+    (n == 100 ? first : last) = {forces, built, kept, brute};
   }
+  const auto exponent = [&](std::size_t k) { return format_fixed(std::log(last[k] / first[k]) / std::log(8.0), 2); };
+  table.add_row({"growth exponent, 3000 to 24 000", "", exponent(0), exponent(1), "", exponent(2), "", "", "",
+                 exponent(3)});
   write_table_fragment(study.dir + "/hash.md", table, study.command);
 }
 // [hash_benchmark]

@@ -218,7 +218,8 @@ OutputList report_outputs() {
           {"peirce.md", fragment, "lambda for each tip chord angle, elastica against Peirce's formula"},
           {"fabrics.md", fragment, "the standard's 41.5 degree reading on simulated real fabrics"},
           {"cost.md", fragment, "one force and one Hessian evaluation of each bending term beside the springs'"},
-          {"stable_step.md", fragment, "the fastest bending mode against the springs' as the spacing halves"}};
+          {"stable_step.md", fragment, "the fastest bending mode against the springs' as the spacing halves"},
+          {"rolled.md", fragment, "a rolled sheet released: XPBD and local/global with bending against implicit Euler"}};
 }
 
 int report_runs(const std::string& dir, bool full, const std::string& command) {
@@ -229,5 +230,6 @@ int report_runs(const std::string& dir, bool full, const std::string& command) {
   write_fabrics(dir, command);                // 5. the standard's reading on real fabrics
   write_cost(dir, command);                   // 6. what bending costs beside the springs
   write_stable_step(dir, command);            // 7. and what it does to the explicit step
+  write_rolled(dir, command);                 // 8. bending in XPBD and local/global
   return 0;
 }
