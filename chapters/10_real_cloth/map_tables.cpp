@@ -16,6 +16,7 @@
 #include <iomanip>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <tuple>
 
 using namespace cloth;
@@ -52,9 +53,12 @@ Part read_part(const std::string& path) {
     if (line.empty() || line[0] == '#') continue;
     std::istringstream s(line);
     Row r;
-    s >> r.side >> r.program >> r.forces >> std::quoted(r.setting) >> r.steps >> r.seconds >> r.error_at_T >> r.error >>
+    std::string error_at_T, error;  // read as text: a failed run's "nan" is not a number to operator>>
+    s >> r.side >> r.program >> r.forces >> std::quoted(r.setting) >> r.steps >> r.seconds >> error_at_T >> error >>
         r.status;
-    if (!s) continue;
+    if (!s) throw std::runtime_error(path + ": a row that is not a run: " + line);
+    r.error_at_T = std::stod(error_at_T);
+    r.error = std::stod(error);
     if (r.side == "book") {  // the one name of each method (integrators/configuration.hpp), however it was written
       r.program = label(r.program);
       const std::size_t comma = r.setting.find(',');
@@ -99,8 +103,10 @@ std::string best(const Part& p, const std::string& side, double level) {
   std::string by;
   for (std::size_t k = 1; k < p.rows.size(); ++k) {
     const Row &a = p.rows[k - 1], &b = p.rows[k];
-    if (!in_column(b, side) || a.program != b.program || a.forces != b.forces || a.status != "ok" || b.status != "ok")
-      continue;
+    const bool last = k + 1 == p.rows.size() || p.rows[k + 1].program != b.program || p.rows[k + 1].forces != b.forces;
+    if (!last || !in_column(b, side) || a.program != b.program || a.forces != b.forces || a.status != "ok" ||
+        b.status != "ok")
+      continue;  // only a ladder's last two rungs, both finished: an earlier pair can hide a stall that followed
     const double q = std::log(a.error / b.error) / std::log(b.seconds / a.seconds);
     if (!(q > 0.2) || !(b.seconds > a.seconds)) continue;  // no convergence to extrapolate
     const double t = b.seconds * std::pow(b.error / level, 1 / q);
