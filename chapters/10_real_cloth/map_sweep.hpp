@@ -38,7 +38,7 @@ struct SweepPlan {
   double prune_factor = 20;
   /// A SUNDIALS run is stopped after this many times the fastest run that reached 1 mm (at least 10 s, at most
   /// the budget): its time is not predictable from the rung before it, and slower than that it wins no cell.
-  double sundials_cap_factor = 50;
+  double sundials_cap_factor = 20;
 };
 
 /// Measures `part` and writes `DIR/map_PART.dat`; `command` is the line that measures it again. Returns the
