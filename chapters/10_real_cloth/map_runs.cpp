@@ -4,6 +4,7 @@
 #include "peer_systems.hpp"
 #include "plain_xpbd.hpp"
 
+#include "analysis/reference_trajectory.hpp"
 #include "integrators/configuration.hpp"
 #include "program/interrupt.hpp"
 #include "program/method_flags.hpp"
@@ -79,6 +80,26 @@ MapRun book_run(const Scene& scene, const std::string& name, double h, double T)
         scene.all_positions(x, all);
         run.frames.push_back({static_cast<double>(k) * h, all});
       }
+    }
+    return run;
+  });
+}
+
+MapRun book_dopri5_run(const Scene& scene, double tol, double T) {
+  return timed([&] {
+    ForceField field(scene);
+    MapRun run;
+    try {
+      ReferenceTrajectory r = reference_trajectory(field, scene.initial_positions(), scene.initial_velocities(), T,
+                                                   static_cast<int>(frame_count(frame_interval, T)), tol,
+                                                   &interrupt_flag());
+      throw_if_interrupted();
+      run.steps = r.steps;
+      run.frames = std::move(r.frames);
+    } catch (const std::runtime_error& failed) {  // the pair's step fell below its floor, or the state diverged
+      throw_if_interrupted();
+      run.ok = false;
+      run.note = failed.what();
     }
     return run;
   });

@@ -28,6 +28,10 @@ enum class Forces { plain, book };
 /// The book's method `name` (a composed configuration name, "implicit_euler/one/cg") at step h to T, the Newton
 /// matrix by the book's default rule. h is a whole fraction or multiple of the frame interval 1/60 s.
 MapRun book_run(const cloth::Scene& scene, const std::string& name, double h, double T);
+/// The book's Dormand-Prince pair (dopri5, Chapter 8) under the max-norm tolerance rtol = atol = tol, each frame
+/// interval integrated to its end (analysis/reference_trajectory.hpp, the reference's own routine at a looser
+/// tolerance).
+MapRun book_dopri5_run(const cloth::Scene& scene, double tol, double T);
 /// Boost.Odeint's runge_kutta4 at the fixed step h.
 MapRun odeint_rk4_run(const cloth::Scene& scene, Forces forces, double h, double T);
 /// Boost.Odeint's controlled Dormand-Prince 5(4), rtol = atol = tol, frames from its dense output (integrate_times).

@@ -69,6 +69,9 @@ std::vector<Series> series_of(const Scene& scene, double T) {
                [=, &scene](int k) { return book_run(scene, "symplectic_euler", stable(se, k), T); }});
   s.push_back({"book", "rk4", "book", [=](int k) { return step(stable(rk4, k)); },
                [=, &scene](int k) { return book_run(scene, "rk4", stable(rk4, k), T); }});
+  const auto tolerance = [](int k) { return std::pow(10.0, -2 - k); };  // 1e-2, 1e-3, ...
+  s.push_back({"book", "dopri5", "book", [=](int k) { return format("tol = %g", tolerance(k)); },
+               [=, &scene](int k) { return book_dopri5_run(scene, tolerance(k), T); }});
   for (const char* name : {"implicit_euler/one/cg", "implicit_euler", "local_global"})
     s.push_back({"book", name, "book", [=](int k) { return step(frames_step(k)); },
                  [=, &scene](int k) { return book_run(scene, name, frames_step(k), T); }});
@@ -82,9 +85,8 @@ std::vector<Series> series_of(const Scene& scene, double T) {
     const std::string forces = f == Forces::plain ? "plain" : "book";
     s.push_back({"peer", "odeint_rk4", forces, [=](int k) { return step(stable(rk4, k)); },
                  [=, &scene](int k) { return odeint_rk4_run(scene, f, stable(rk4, k), T); }});
-    const auto tol = [](int k) { return std::pow(10.0, -2 - k); };  // 1e-2, 1e-3, ...
-    s.push_back({"peer", "odeint_dopri5", forces, [=](int k) { return format("tol = %g", tol(k)); },
-                 [=, &scene](int k) { return odeint_dopri5_run(scene, f, tol(k), T); }});
+    s.push_back({"peer", "odeint_dopri5", forces, [=](int k) { return format("tol = %g", tolerance(k)); },
+                 [=, &scene](int k) { return odeint_dopri5_run(scene, f, tolerance(k), T); }});
     const auto loose = [](int k) { return std::pow(10.0, -1 - k); };  // 1e-1, 1e-2, ...
     s.push_back({"peer", "cvode_bdf", forces, [=](int k) { return format("tol = %g", loose(k)); },
                  [=, &scene](int k) { return cvode_run(scene, f, loose(k), 5, T); }});

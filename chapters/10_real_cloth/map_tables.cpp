@@ -71,7 +71,8 @@ Part read_part(const std::string& path) {
 }
 
 bool explicit_program(const std::string& program) {
-  return program == "symplectic_euler" || program == "rk4" || program == "odeint_rk4" || program == "odeint_dopri5";
+  return program == "symplectic_euler" || program == "rk4" || program == "dopri5" || program == "odeint_rk4" ||
+         program == "odeint_dopri5";
 }
 
 std::string who(const Row& r) {
