@@ -21,6 +21,9 @@ int report_runs(const std::string& dir, bool full, const std::string& command);
 void write_cost(const std::string& dir, const std::string& command);
 void write_stable_step(const std::string& dir, const std::string& command);
 
+/// The part in fabrics.cpp: fabrics.md, the standard's 41.5 degree reading on simulated strips of measured fabrics.
+void write_fabrics(const std::string& dir, const std::string& command);
+
 /// The median over 5 repetitions of the mean time of 5 calls of `work` [s].
 double median_seconds(const std::function<void()>& work);
 
