@@ -66,13 +66,13 @@ double simulated_reading(const Fabric& f) {
 }  // namespace
 
 void write_fabrics(const std::string& dir, const std::string& command) {
-  MarkdownTable table({"fabric", "rho_A [kg/m^2]", "B [N m]", "c = (B / (rho_A g))^(1/3) [cm]",
+  MarkdownTable table({"fabric", "rho_A [kg/m^2]", "B [1e-6 N m]", "c = (B / (rho_A g))^(1/3) [cm]",
                        "overhang at 41.5 degrees, hinge [cm]", "bending length read, L / 2 [cm]", "difference"},
                       "lrrrrrr");
   for (const Fabric& f : fabrics) {
     const double c = std::cbrt(f.bending_rigidity / (f.areal_density * 9.81));
     const double L = simulated_reading(f);
-    table.add_row({f.name, format_number(f.areal_density, 4), format_number(f.bending_rigidity, 4),
+    table.add_row({f.name, format_number(f.areal_density, 4), format_number(1e6 * f.bending_rigidity, 4),
                    format_fixed(100 * c, 3), format_fixed(100 * L, 3), format_fixed(50 * L, 3),
                    format_number(100 * (L / 2 / c - 1), 2) + " %"});
   }
