@@ -121,6 +121,14 @@ void write_convergence(const std::string& dir, bool full, const std::string& com
     std::vector<std::string> row = {"L/" + std::to_string(n)};
     std::string hinge_work, flexion_work;
     for (const BendingModel model : all_models) {
+      // The flexion strip converges linearly, 1662 Newton iterations at L/80, each several times dearer at L/160:
+      // it stops at L/80, where its error has long stopped falling.
+      if (model == BendingModel::flexion && n > 80) {
+        std::fprintf(out, " nan 0");
+        row.push_back("not run");
+        flexion_work = "not run";
+        continue;
+      }
       const Measured m = measure(test_strip(model, lambda, n));
       const double error = m.rest.tip_deflection / exact - 1;
       std::fprintf(out, " %.6e %d", m.rest.converged ? std::abs(error) : NAN, m.rest.iterations);
