@@ -24,6 +24,8 @@ void write_stable_step(const std::string& dir, const std::string& command);
 /// The part in rolled.cpp: rolled.md, a sheet rolled onto a cylinder and released, by XPBD and local/global with
 /// bending against implicit Euler at the same step (the gap and the energy each keeps).
 void write_rolled(const std::string& dir, const std::string& command);
+/// The part in fabrics.cpp: fabrics.md, the standard's 41.5 degree reading on simulated strips of measured fabrics.
+void write_fabrics(const std::string& dir, const std::string& command);
 
 /// The median over 5 repetitions of the mean time of 5 calls of `work` [s].
 double median_seconds(const std::function<void()>& work);

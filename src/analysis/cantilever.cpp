@@ -139,8 +139,11 @@ CantileverRest Cantilever::rest_shape(CantileverStart start, double tolerance, i
   solver.analyzePattern(A);
   double E = energy(rest.x);
   forces(rest.x, f);
-  // The force a spring's rounding leaves, 64 eps K 2d: a very light strip's weight may be below it.
-  const double floor = 64 * std::numeric_limits<double>::epsilon() * params_.stiffness * 2 * params_.spacing;
+  // The force rounding leaves: a coordinate of size X = L + W is stored to eps X, so a spring's force to K eps X,
+  // and a particle sums eight of them. A fine or light strip's weight may be below it (3e-7 weights at L/160 of
+  // the book's test strip, where the search stalls at 3.1e-13 N).
+  const double floor = 8 * std::numeric_limits<double>::epsilon() * params_.stiffness *
+                       (params_.overhang + params_.width);
   const double target = std::max(tolerance * rest.weight, floor);
   double tau = 1e-2;  // [s]: the first steps may be short pseudo-time steps, later ones are Newton's
   for (; rest.iterations < max_iterations; ++rest.iterations) {
