@@ -106,9 +106,12 @@ int main(int argc, char** argv) {
   cli.declare_outputs([&](const Options&) { return flags.report_runs ? ch09::report_outputs() : run_output_specs(); });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    if (flags.report_runs)
+    if (flags.report_runs) {
       refuse_unused(opt, "--report-runs", {"--tableau", "--tol", "--damping"},
                     "its studies run every registered method, at fixed steps, and set their own damping");
+      refuse_unused(opt, "--report-runs", {"--latest-force-guess", "--refresh-jacobian"},
+                    "its studies measure the book's Newton as it is");
+    }
     else if (flags.quick)
       throw InputError("--quick: only with --report-runs");
     const ch09::MethodChoice choice = method_choice(flags, opt);
