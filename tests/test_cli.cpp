@@ -355,6 +355,7 @@ TEST_CASE("ch09_implicit_runge_kutta: fully implicit tableaus, --tol without a p
                      {{"--newton", "one", "--newton-max-iter", "5"}, {"--newton-max-iter", "one iteration"}},
                      {{"--linear-solver", "cg", "--jacobian", "exact"}, {"--linear-solver", "cg", "definite"}},
                      {{"--newton-tol", "2"}, {"--newton-tol", "(0, 1)"}},
+                     {{"--report-runs", "--latest-force-guess"}, {"--latest-force-guess", "--report-runs"}},
                  });
 }
 

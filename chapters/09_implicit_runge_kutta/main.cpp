@@ -36,6 +36,7 @@ struct Flags {
   std::optional<double> tol;
   cloth::NewtonFlags newton;
   bool report_runs = false, quick = false;
+  bool latest_force_guess = false, refresh_jacobian = false;  // the page's "before": the first guess and rule
 };
 
 void add_flags(CommandLine& cli, Flags& flags) {
@@ -56,6 +57,15 @@ void add_flags(CommandLine& cli, Flags& flags) {
   // to the same tolerance as full Newton at a fraction of its factorizations, several times faster (the page's
   // work-precision study).
   flags.newton.add_to(cli, NewtonVariant::modified);
+  // The two ideas the page measures against what came before them, each switched off by its own flag.
+  cli.add_switch("--latest-force-guess",
+                 "start each stage's Newton iteration from the stage equation with the latest known force, not "
+                 "from the step before's cubic dense output",
+                 [&] { flags.latest_force_guess = true; });
+  cli.add_switch("--refresh-jacobian",
+                 "modified Newton evaluates the Jacobian again whenever it refactors the Newton matrix, instead of "
+                 "keeping it and refactoring for a new step size alone",
+                 [&] { flags.refresh_jacobian = true; });
   cli.add_switch("--report-runs",
                  "the chapter's studies: every method on the undamped cloth, orders on (K, D) = (200, 20) and work "
                  "against precision on (5000, 20) over T = 0.4 s (exit 0 even when a run fails)",
@@ -80,6 +90,8 @@ ch09::MethodChoice method_choice(Flags& flags, const Options& opt) {
   // Newton's settings from their flags, with the one default rule for the Newton matrix (program/method_flags).
   choice.newton = flags.newton.settings_for(Scene(opt.scene));
   choice.newton.estimate_test = choice.tol.has_value();  // a controlled run stops Newton on its error estimate
+  choice.newton.dense_output_predictor = !flags.latest_force_guess;
+  choice.newton.keep_jacobian = !flags.refresh_jacobian;
   return choice;
 }
 
@@ -94,9 +106,12 @@ int main(int argc, char** argv) {
   cli.declare_outputs([&](const Options&) { return flags.report_runs ? ch09::report_outputs() : run_output_specs(); });
   return run_program(cli.program(), [&] {
     const Options opt = cli.parse(argc, argv);
-    if (flags.report_runs)
+    if (flags.report_runs) {
       refuse_unused(opt, "--report-runs", {"--tableau", "--tol", "--damping"},
                     "its studies run every registered method, at fixed steps, and set their own damping");
+      refuse_unused(opt, "--report-runs", {"--latest-force-guess", "--refresh-jacobian"},
+                    "its studies measure the book's Newton as it is");
+    }
     else if (flags.quick)
       throw InputError("--quick: only with --report-runs");
     const ch09::MethodChoice choice = method_choice(flags, opt);
