@@ -93,7 +93,7 @@ TEST_CASE("the plain fabric's accelerations and definite Jacobian are the book's
 namespace {
 void write_part(const cloth_test::fs::path& file, const std::string& part, double motion, const std::string& rows) {
   std::ofstream out(file);
-  out << "# part " << part << " motion_over_frames " << motion << "\n# side program forces setting steps seconds "
+  out << "# part " << part << " T 0.6 motion_over_frames " << motion << "\n# side program forces setting steps seconds "
       << "error_at_T error_over_frames status\n" << rows;
 }
 }  // namespace
@@ -112,6 +112,12 @@ TEST_CASE("the map's tables: the fastest run that reached a level, a prediction 
   // The swing scene with a motion of 8 mm: 1 cm is met by standing still.
   write_part(dir.path() / "map_swing_20_1e5.dat", "swing_20_1e5", 0.008,
              "book rk4 book \"h = 1/2760\" 1656 5e-01 1e-4 5e-05 ok\n");
+  // A ladder whose last rung failed (its errors written as nan) predicts nothing, though its first two rungs
+  // converge: the failed row is read, and only a ladder's last two rungs may extrapolate.
+  write_part(dir.path() / "map_curtain_40_1e5.dat", "curtain_40_1e5", 1.5,
+             "book implicit_euler/one/cg book \"h = 1/30\" 18 1e-01 5e-2 5e-02 ok\n"
+             "book implicit_euler/one/cg book \"h = 1/60\" 36 2e-01 2e-2 2e-02 ok\n"
+             "book implicit_euler/one/cg book \"h = 1/120\" 3 4e-01 nan nan failed\n");
   const cloth_test::ProgramRun run = cloth_test::run_chapter("ch10_map", {"--tables", "--out", "."}, dir.path());
   REQUIRE(run.status == 0);
   const std::string curtain = cloth_test::read_text(dir.path() / "map_curtain.md");
@@ -124,6 +130,7 @@ TEST_CASE("the map's tables: the fastest run that reached a level, a prediction 
   CHECK(curtain.find("| 1 cm | rk4, h = 1/2760: 0.5 s | cvode_bdf, tol = 0.1 (plain forces): 0.2 s |") !=
         std::string::npos);
   CHECK(curtain.find("| plausible: 7.5 cm | symplectic_euler, h = 1/3900: 0.2 s |") != std::string::npos);
+  CHECK(curtain.find("| 40 x 40 | 10⁵ | 1.5 m to 0.6 s | 1 mm | none | none | none |") != std::string::npos);
   CHECK(swing.find("| 1 cm | met by standing still |") != std::string::npos);
   CHECK(swing.find("| 1 mm | rk4, h = 1/2760: 0.5 s |") != std::string::npos);
 }
