@@ -21,7 +21,7 @@ int report_runs(const std::string& dir, bool full, const std::string& command);
 void write_cost(const std::string& dir, const std::string& command);
 void write_stable_step(const std::string& dir, const std::string& command);
 
-/// The median over 5 repetitions of the mean time of 5 calls of `work` [s].
+/// The median over 5 runs of the mean processor time of 5 calls of `work` [s] (program/timing.hpp).
 double median_seconds(const std::function<void()>& work);
 
 /// The files `--drape-runs` writes, declared once.
