@@ -174,6 +174,27 @@ def top_level(decl):
     return out
 
 
+NOT_A_NAME = {"decltype", "alignas", "noexcept", "sizeof", "alignof", "__attribute__", "__declspec"}
+
+
+def parameter_list(decl):
+    """The index of the '(' opening the function's parameters: the first one outside template angles that follows
+    a name (not `decltype(...)` or `alignas(...)`) or an operator's symbol, or None."""
+    angles = 0
+    for k, t in enumerate(decl):
+        if t.text == "<" and k > 0 and (IDENTIFIER.fullmatch(decl[k - 1].text) or decl[k - 1].text == "::"):
+            if decl[k - 1].text != "operator":
+                angles += 1
+        elif t.text == ">" and angles > 0 and decl[k - 1].text != "operator":
+            angles -= 1
+        elif t.text == "(" and angles == 0 and k > 0:
+            before = decl[k - 1].text
+            if (IDENTIFIER.fullmatch(before) and before not in NOT_A_NAME) or not IDENTIFIER.fullmatch(before) and \
+                    any(decl[j].text == "operator" for j in range(max(k - 3, 0), k)):
+                return k
+    return None
+
+
 def kind_of_brace(decl):
     """What a '{' opens at namespace or class scope, from the tokens of the declaration before it: 'namespace',
     'class', 'function' (with the function's name and the line it stands on), 'member-init' (a brace initialiser in a
@@ -196,7 +217,7 @@ def kind_of_brace(decl):
     for idx, (k, t) in enumerate(outside):
         if t.text == "=" and not (idx > 0 and texts[idx - 1] == "operator"):
             return "data", None
-    paren = next((k for k, t in enumerate(decl) if t.text == "("), None)
+    paren = parameter_list(decl)
     if paren is None:
         return "data", None  # `Table t{...}`, `double g{9.81}`
     name = paren - 1
