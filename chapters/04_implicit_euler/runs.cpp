@@ -2,6 +2,7 @@
 #include "report.hpp"
 
 #include "integrators/method_registry.hpp"
+#include "program/output_kinds.hpp"
 #include "program/progress.hpp"
 #include "program/run_outputs.hpp"
 
@@ -39,7 +40,7 @@ NewtonSettings full_newton(NewtonSettings newton, LinearSolverKind solver, Stiff
 std::string report_folder(const char* variant, const ReportCase& c) { return std::string(variant) + "_" + c.name(); }
 
 OutputList report_outputs() {
-  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment, data = OutputKind::data;
+  using namespace cloth::output_kinds;
   OutputList files = {
       {"comparison.dat", data, "full Newton against one iteration at each (K, D): iterations, energies"},
       {"residuals.dat", figure, "the residual of each Newton iteration on one stiff step"},

@@ -5,6 +5,7 @@
 #include "integrators/method_registry.hpp"
 #include "program/interrupt.hpp"
 #include "program/limits.hpp"
+#include "program/output_kinds.hpp"
 #include "program/parallel_runs.hpp"
 #include "program/run_outputs.hpp"
 
@@ -19,7 +20,7 @@ namespace ch05 {
 using namespace cloth;
 
 OutputList outputs(bool sweep) {
-  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment, data = OutputKind::data;
+  using namespace cloth::output_kinds;
   OutputList files = {
       {"parameters.dat", figure, "h, T and the numbers of methods and cases, for the figures' loops"},
       {"runs.dat", figure, "each figure run's name, method, status and the extent of its meshes"},

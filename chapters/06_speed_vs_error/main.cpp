@@ -9,6 +9,7 @@
 #include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
+#include "program/output_kinds.hpp"
 #include "program/output_spec.hpp"
 
 #include <string>
@@ -38,9 +39,9 @@ OutputList benchmark_outputs() {
           {"factorization_speedup.md", OutputKind::fragment, "how much faster the block factorizations are"}};
 }
 OutputList study_outputs() {
-  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment;
+  using namespace cloth::output_kinds;
   OutputList files = {
-      {"speed_vs_error.dat", OutputKind::data, "every run of every study: step, time, errors, work counters"},
+      {"speed_vs_error.dat", data, "every run of every study: step, time, errors, work counters"},
       {"near_zero.dat", figure, "the shortest spring's l / L0 over time"},
       {"orders.dat", figure, "step halvings: difference and observed order, per method and horizon"},
       {"sensitivity.dat", figure, "a perturbation's amplification over time, per configuration"},
@@ -59,7 +60,7 @@ OutputList study_outputs() {
       {"stiff_pick.md", fragment, "the pick for the stiff cloth"},
       {"scaling.md", fragment, "the cost of a step per grid, with fitted exponents"}};
   for (const double h : local_error_steps)
-    files.push_back({ch06::local_error_name(h), h == 1e-3 ? figure : OutputKind::data,  // the figure draws h = 1 ms
+    files.push_back({ch06::local_error_name(h), h == 1e-3 ? figure : data,  // the figure draws h = 1 ms
                      "RK4's local error per step along the (50, 0) trajectory"});
   for (const ch06::Config& c : configs)
     files.push_back({"wp_" + c.name + ".dat", figure, "the work-precision points of " + c.name});

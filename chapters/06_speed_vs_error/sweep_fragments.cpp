@@ -42,6 +42,9 @@ std::string counts(const WorkPoint& p) {
   return text;
 }
 
+// A run of implicit Euler with any Newton settings: its composed name's method is the registry's implicit_euler.
+bool is_implicit_euler(const WorkPoint& p) { return parse_configuration(p.method).method == "implicit_euler"; }
+
 std::string run_text(const WorkPoint& p) {
   return method_title(p.method) + ", " + setting(p) + ": " + counts(p) + "; " +
          ms_with_spread(p.timing.fastest_cpu, p.timing.slowest_cpu);
@@ -142,7 +145,7 @@ void write_implicit(const std::string& dir, const std::vector<WorkPoint>& work, 
   for (const WorkPoint& p : work)
     if (p.config == configs.front().name && p.method != "dopri5") largest = std::max(largest, p.h);
   for (const WorkPoint& p : work)
-    if (!p.dropped && p.config == configs.front().name && p.method.rfind("implicit_euler", 0) == 0 && p.h == largest)
+    if (!p.dropped && p.config == configs.front().name && is_implicit_euler(p) && p.h == largest)
       table.add_row({method_title(p.method), g(p.error), ms_with_spread(p.timing.fastest_cpu, p.timing.slowest_cpu),
                      std::to_string(p.counters.newton_iterations), std::to_string(p.counters.factorizations),
                      std::to_string(p.counters.cg_iterations)});
@@ -153,7 +156,7 @@ void write_implicit(const std::string& dir, const std::vector<WorkPoint>& work, 
   for (const WorkPoint& p : work) {
     if (p.dropped || p.config != stiff.name) continue;
     if (p.method == "rk4" && (!rk4 || p.error < rk4->error)) rk4 = &p;
-    if (p.method.rfind("implicit_euler", 0) == 0 && (!implicit || p.error < implicit->error)) implicit = &p;
+    if (is_implicit_euler(p) && (!implicit || p.error < implicit->error)) implicit = &p;
   }
   std::string sentence;
   if (rk4 && implicit)

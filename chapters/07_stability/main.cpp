@@ -12,6 +12,7 @@
 #include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
+#include "program/output_kinds.hpp"
 #include "program/timing.hpp"
 
 #include <cmath>
@@ -26,7 +27,7 @@ namespace {
 // The files the program writes into --out, declared once (program/output_spec.hpp).
 cloth::OutputList outputs() {
   using cloth::OutputKind;
-  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment, data = OutputKind::data;
+  using namespace cloth::output_kinds;
   cloth::OutputList files = {
       {"regions.dat", figure, "|R(z)| over the complex plane, every tableau"},
       {"predicted_rest.dat", figure, "h_max predicted from the rest spectrum against K"},

@@ -9,6 +9,7 @@
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
 #include "program/output.hpp"
+#include "program/output_kinds.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -180,7 +181,7 @@ void estimate_check(const Options& opt, const CheckPlan& plan, const std::string
 }  // namespace
 
 OutputList experiment_outputs() {
-  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment, data = OutputKind::data;
+  using namespace cloth::output_kinds;
   return {{"pairs.md", fragment, "the registry's pairs with the residuals of their order conditions"},
           {"order_conditions.md", fragment, "the order conditions up to order 4"},
           {"tree_counts.md", fragment, "the number of rooted trees by order"},

@@ -2,6 +2,8 @@
 // std::vector (positions of the free particles, then their velocities), one plain loop over the springs, in any
 // floating-point type (double for the straightforward Boost.Odeint program, long double for the reference).
 // Only the topology (which particles a spring joins, rest lengths, pinned positions) is taken from the Scene.
+// Chapter 6's plain_fabric.hpp, the peers' loop, adds the same terms in another order; the page says why the two
+// are kept apart (ch08.md, "Why this loop and not Chapter 6's").
 #pragma once
 
 #include "model/scene.hpp"

@@ -8,6 +8,7 @@
 #include "program/command_line.hpp"
 #include "program/fragment.hpp"
 #include "program/output.hpp"
+#include "program/output_kinds.hpp"
 #include "program/output_spec.hpp"
 
 #include <cmath>
@@ -22,9 +23,9 @@ namespace {
 
 // The files the program writes into --out, declared once (program/output_spec.hpp).
 OutputList outputs() {
-  const OutputKind fragment = OutputKind::fragment;
-  return {{"work_precision.dat", OutputKind::figure_input, "every run of both sides: tolerance, error, time, work"},
-          {"levels.dat", OutputKind::data, "each side's fastest run at each error level"},
+  using namespace cloth::output_kinds;
+  return {{"work_precision.dat", figure, "every run of both sides: tolerance, error, time, work"},
+          {"levels.dat", data, "each side's fastest run at each error level"},
           {"levels.md", fragment, "each side's fastest run at each error level, and the ratio"},
           {"reference.md", fragment, "the reference and its credential"},
           {"spring_turn.md", fragment, "dopri5 with and without the spring-turn check"},

@@ -2,15 +2,17 @@
 // a folder per method of the energy study.
 #include "studies.hpp"
 
+#include "program/output_kinds.hpp"
+
 using namespace cloth;
 
 namespace ch09 {
 
 OutputList report_outputs() {
-  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment;
+  using namespace cloth::output_kinds;
   OutputList files = {
       {"methods.md", fragment, "the implicit rows of the registry and what their tableaus decide"},
-      {"energy_summary.dat", OutputKind::data, "E(T) / E(0), its range and the work of each method, undamped cloth"},
+      {"energy_summary.dat", data, "E(T) / E(0), its range and the work of each method, undamped cloth"},
       {"energy_summary.md", fragment, "E(T) / E(0) and its range for each method on the undamped cloth"},
       {"orders.dat", figure, "each method's error at T against the step, (K, D) = (200, 20)"},
       {"orders.md", fragment, "the errors and the observed order of each method"},

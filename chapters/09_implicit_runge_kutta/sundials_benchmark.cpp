@@ -8,6 +8,7 @@
 #include "program/fragment.hpp"
 #include "program/limits.hpp"
 #include "program/output.hpp"
+#include "program/output_kinds.hpp"
 #include "program/output_spec.hpp"
 #include "program/run_outputs.hpp"
 
@@ -78,8 +79,8 @@ OutputList single_run_outputs() {
 }
 
 OutputList report_outputs() {
-  const OutputKind fragment = OutputKind::fragment;
-  return {{"stiff_runs.dat", OutputKind::figure_input, "every run on the stiff cloth: error, time and work"},
+  using namespace cloth::output_kinds;
+  return {{"stiff_runs.dat", figure, "every run on the stiff cloth: error, time and work"},
           {"stiff_comparison.md", fragment, "for each error level, each side's fastest run reaching it"},
           {"stiff_work.md", fragment, "the work of those runs: factorizations, Jacobians, Newton iterations, forces"},
           {"stiff_reference.md", fragment, "how far the reference moves when its step is halved"},

@@ -7,6 +7,7 @@
 #include "curtain_runs.hpp"
 
 #include "program/interrupt.hpp"
+#include "program/output_kinds.hpp"
 
 #include <cstdio>
 
@@ -75,18 +76,18 @@ void sensitivity(const std::string& out, const std::string& command) {
 }  // namespace
 
 OutputList curtain_outputs(bool quick) {
-  const OutputKind fragment = OutputKind::fragment, drawn = OutputKind::figure_input, data = OutputKind::data;
+  using namespace cloth::output_kinds;
   // The page shows the full run's tables, committed under data/curtain_full: the quick run's are data.
   OutputList files = {{"curtain_scenes.md", fragment, "each scene's motion, strain, phase and reference"},
                       {"curtain_levels.md", data, "each scene's fastest run to plausible, 1 cm and 1 mm"},
-                      {"curtain_motion.dat", drawn, "each scene's motion at T and over the frames"},
+                      {"curtain_motion.dat", figure, "each scene's motion at T and over the frames"},
                       {"rotation.md", fragment, "implicit Euler's rate of turning after 1 s against the prediction"},
-                      {"rotation.dat", drawn, "the rate of turning after each step, measured and predicted"}};
+                      {"rotation.dat", figure, "the rate of turning after each step, measured and predicted"}};
   for (const CurtainScene& c : curtain_scenes) {
     const bool edge_drawn = c.tag != "corners";  // curtain.gp draws the free edge of the hanging curtains
     files = files + OutputList{{"curtain_" + c.tag + ".md", data, c.title + ": every run's errors, energy, strain"},
-                               {"curtain_" + c.tag + ".dat", drawn, c.title + ": every run's measures"},
-                               {"curtain_edge_" + c.tag + ".dat", edge_drawn ? drawn : data,
+                               {"curtain_" + c.tag + ".dat", figure, c.title + ": every run's measures"},
+                               {"curtain_edge_" + c.tag + ".dat", edge_drawn ? figure : data,
                                 c.title + ": the free edge's mean height, reference and runs"},
                                {"curtain_flags_" + c.tag + ".md", fragment, c.title + ": the single run's flags"}};
   }

@@ -2,6 +2,8 @@
 // includes (fragments), what plot.gp draws, and the data kept for the reader.
 #include "real_cloth.hpp"
 
+#include "program/output_kinds.hpp"
+
 using namespace cloth;
 
 namespace ch10 {
@@ -24,7 +26,7 @@ OutputList practitioner_outputs(const std::string& tag, bool on_the_page) {
 }  // namespace
 
 OutputList real_cloth_outputs(bool quick) {
-  const OutputKind fragment = OutputKind::fragment, drawn = OutputKind::figure_input, data = OutputKind::data;
+  using namespace cloth::output_kinds;
   OutputList files = {
       {"preset.md", fragment, "the fabric preset at 20 to 153 particles per side"},
       {"stable_step.md", fragment, "the explicit methods' stable step, predicted and measured"},
@@ -33,13 +35,13 @@ OutputList real_cloth_outputs(bool quick) {
       {"practitioner_summary.txt", data, "the verdicts' sentences, one per T and accuracy"},
       {"refinement.md", fragment, "each grid's largest distance to the next finer grid's"},
       {"refinement.dat", data, "the distances of refinement.md"},
-      {"fabric_frames.dat", drawn, "the 39 x 39 fabric at t = 0, 0.1, ..., 0.5 s"},
+      {"fabric_frames.dat", figure, "the 39 x 39 fabric at t = 0, 0.1, ..., 0.5 s"},
       {"step_cost.md", fragment, "each method's CPU time per step against the grid"},
       {"step_cost.dat", data, "the costs of step_cost.md"},
       {"map_1cm.md", fragment, "the predicted cheapest method to 1 cm at each grid and K"},
       {"map_1mm.md", fragment, "the predicted cheapest method to 1 mm at each grid and K"},
       {"map.dat", data, "every method's predicted CPU time at each accuracy, K and grid"},
-      {"map_winners.dat", drawn, "the cheapest method at each accuracy, K and grid"}};
+      {"map_winners.dat", figure, "the cheapest method at each accuracy, K and grid"}};
   for (double K : stiffnesses)
     files.push_back({format("curves_%s.dat", curves_tag(K).c_str()), data,
                      format("every run of the sweep at K = %s N/m: step, CPU time, error, counters",

@@ -6,6 +6,7 @@
 #include "base/input_error.hpp"
 #include "program/fragment.hpp"
 #include "program/output.hpp"
+#include "program/output_kinds.hpp"
 #include "program/output_spec.hpp"
 
 namespace ch11 {
@@ -21,7 +22,7 @@ void add_report_flags(cloth::CommandLine& cli) {
 
 cloth::OutputList report_outputs() {
   using cloth::OutputKind;
-  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment;
+  using namespace cloth::output_kinds;
   return {{"incline.md", fragment, "the incline against g (sin - mu_k cos), below and beyond the cone"},
           {"incline.dat", figure, "the mean displacement down the slope against the closed form"},
           {"incline_frames.dat", figure, "frames of the sheet sliding down the 30-degree incline"},

@@ -8,9 +8,9 @@
 #include "model/bending.hpp"
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
+#include "program/timing.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -20,14 +20,7 @@
 using namespace cloth;
 
 double median_seconds(const std::function<void()>& work) {
-  std::vector<double> t;
-  for (int r = 0; r < 5; ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    for (int k = 0; k < 5; ++k) work();
-    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 5);
-  }
-  std::nth_element(t.begin(), t.begin() + 2, t.end());
-  return t[2];
+  return time_runs(work, {.runs = 5, .repeat = 5}).median_cpu;
 }
 
 // cost.md: the time of one force evaluation and one Hessian of the springs and of each bending model, on a

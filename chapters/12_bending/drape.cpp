@@ -10,9 +10,10 @@
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
 #include "program/output.hpp"
+#include "program/output_kinds.hpp"
+#include "program/timing.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -101,14 +102,14 @@ DrapeRun run_curtain(const DrapeCase& c) {
   Vector v = scene.initial_velocities(), all(3 * scene.particle_count());
   const int steps = static_cast<int>(std::lround(drape_t_end / drape_dt));
   const int early = static_cast<int>(std::lround(drape_t_early / drape_dt));
-  const auto start = std::chrono::steady_clock::now();
+  const double start = thread_cpu_seconds();
   for (; run.steps < steps; ++run.steps) {
     throw_if_interrupted();
     if (run.steps % sample_every == 0) run.history.push_back(measure_drape(scene, unit_hinges, run.x, all));
     if (run.steps == early) run.early = run.x;
     if (!stepper->step(drape_dt, run.x, v)) break;
   }
-  run.seconds_per_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / run.steps;
+  run.seconds_per_step = (thread_cpu_seconds() - start) / run.steps;
   run.newton_per_step = static_cast<double>(stepper->counters().newton_iterations) / run.steps;
   if (run.steps == steps) run.history.push_back(measure_drape(scene, unit_hinges, run.x, all));
   return run;
@@ -136,7 +137,7 @@ void write_drape_cost(const std::string& dir, const std::string& command, const 
 }  // namespace
 
 OutputList drape_outputs() {
-  const OutputKind figure = OutputKind::figure_input, fragment = OutputKind::fragment;
+  using namespace cloth::output_kinds;
   return {{"drape_curvature.dat", figure, "the curtain's RMS curvature over time, per bending case"},
           {"drape_profile.dat", figure, "the middle column's profile at 0.5 s and 2 s, per bending case"},
           {"drape.md", fragment, "what each bending case changes in the hanging curtain"},

@@ -27,7 +27,7 @@ void write_rolled(const std::string& dir, const std::string& command);
 /// The part in fabrics.cpp: fabrics.md, the standard's 41.5 degree reading on simulated strips of measured fabrics.
 void write_fabrics(const std::string& dir, const std::string& command);
 
-/// The median over 5 repetitions of the mean time of 5 calls of `work` [s].
+/// The median over 5 runs of the mean processor time of 5 calls of `work` [s] (program/timing.hpp).
 double median_seconds(const std::function<void()>& work);
 
 /// The files `--drape-runs` writes, declared once.

@@ -1,5 +1,8 @@
 // Rooted trees and the order conditions they stand for: Butcher's theory generates every condition a Runge-Kutta
-// method of order p must satisfy, so that no condition has to be typed by hand (Chapters 3 and 8).
+// method of order p must satisfy, so that no condition has to be typed by hand (Chapters 3 and 8). It stands
+// here, among the integrators, rather than in analysis/ beside the tableaus' other properties, because the
+// integrator layer uses it: butcher_tableau.cpp refuses a tableau whose coefficients do not satisfy the order it
+// declares, and a layer uses only the layers before it (base, model, integrators, analysis, program).
 #pragma once
 
 #include <Eigen/Core>

@@ -142,42 +142,31 @@ bool StageNewton::refresh(const Vector& V, double gamma, StiffnessTreatment trea
   }
   timing_.assembly += seconds_since(t0);
   t0 = clock::now();
+  const char* failure = nullptr;  // why the matrix could not be factored, if it could not
   switch (settings_.solver) {
     case LinearSolverKind::ldlt:
     case LinearSolverKind::ldu:
       ++counters_.factorizations;
-      if (!block_.factorize(A_)) {
-        timing_.factorization += seconds_since(t0);
-        has_jacobian_ = false;  // a matrix formed from it cannot be factored: the next one starts afresh
-        linear_failure_kind_ = StepFailureKind::factorization_singular;
-        linear_failure_ = "a pivot block is singular";
-        return false;
-      }
+      if (!block_.factorize(A_)) failure = "a pivot block is singular";
       break;
     case LinearSolverKind::lu:
       lu_.factorize(A_);
       ++counters_.factorizations;
-      if (lu_.info() != Eigen::Success) {
-        timing_.factorization += seconds_since(t0);
-        has_jacobian_ = false;  // a matrix formed from it cannot be factored: the next one starts afresh
-        linear_failure_kind_ = StepFailureKind::factorization_singular;
-        linear_failure_ = "SparseLU could not factorize the matrix";
-        return false;
-      }
+      if (lu_.info() != Eigen::Success) failure = "SparseLU could not factorize the matrix";
       break;
     case LinearSolverKind::cg:
       // The block-Jacobi preconditioner: each particle's 3x3 diagonal block inverted, O(n).
-      if (!cg_.compute(A_)) {
-        timing_.factorization += seconds_since(t0);
-        has_jacobian_ = false;  // a matrix formed from it cannot be factored: the next one starts afresh
-        linear_failure_kind_ = StepFailureKind::factorization_singular;
-        linear_failure_ = "a diagonal block of the preconditioner is singular";
-        return false;
-      }
+      if (!cg_.compute(A_)) failure = "a diagonal block of the preconditioner is singular";
       break;
     case LinearSolverKind::automatic: return false;  // never reached: resolve() ran in the constructor
   }
   timing_.factorization += seconds_since(t0);
+  if (failure != nullptr) {
+    has_jacobian_ = false;  // a matrix formed from it cannot be factored: the next one starts afresh
+    linear_failure_kind_ = StepFailureKind::factorization_singular;
+    linear_failure_ = failure;
+    return false;
+  }
   factored_ = true;
   factored_gamma_ = gamma;
   steps_since_refresh_ = 0;
