@@ -68,8 +68,44 @@ void SelfCollision::update_candidates(const Eigen::Ref<const Eigen::VectorXd>& x
 }
 
 int SelfCollision::resolve(Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  const auto n = static_cast<std::size_t>(x.size() / 3);
   ++work_.passes;
-  const int corrected = resolve_self_contacts(pairs_, thickness_, x, v, 1e-3);
+  moved_before_.resize(n);
+  moved_now_.assign(n, 0);
+  moved_list_.clear();
+  const double reach = (1 - 1e-3) * thickness_;
+  int corrected = 0;
+  for (const auto& [a, b] : pairs_)
+    if (part_pair(a, b, thickness_, reach, x.data(), v.data())) {
+      ++corrected;
+      mark_moved(a);
+      mark_moved(b);
+    }
+  work_.pairs_corrected += corrected;
+  return corrected;
+}
+
+void SelfCollision::mark_moved(int p) {
+  if (moved_now_[static_cast<std::size_t>(p)] != 0) return;
+  moved_now_[static_cast<std::size_t>(p)] = 1;
+  moved_list_.push_back(p);
+}
+
+int SelfCollision::resolve_again(Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  ++work_.passes;
+  std::swap(moved_before_, moved_now_);
+  std::fill(moved_now_.begin(), moved_now_.end(), 0);
+  moved_list_.clear();
+  const double reach = (1 - 1e-3) * thickness_;
+  int corrected = 0;
+  for (const auto& [a, b] : pairs_) {
+    const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+    if ((moved_before_[ua] | moved_before_[ub] | moved_now_[ua] | moved_now_[ub]) == 0) continue;
+    if (!part_pair(a, b, thickness_, reach, x.data(), v.data())) continue;
+    ++corrected;
+    mark_moved(a);
+    mark_moved(b);
+  }
   work_.pairs_corrected += corrected;
   return corrected;
 }
