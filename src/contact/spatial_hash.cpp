@@ -131,28 +131,21 @@ std::pair<std::size_t, std::size_t> SpatialHash::run_of(std::uint64_t col) const
 }
 
 // [hash_window]
-// Entry a against the entries [first, last), without a branch on the outcome: about half of the distances tested
-// are close pairs, the worst case for a processor's branch prediction, so each pair is written to the end of
-// `pairs` and the end moves past it only when it is kept. The arithmetic reads contiguous arrays and vectorises.
+// Entry a against the entries [first, last): the distance first, the rest positions only for a close pair. The
+// positions are read from contiguous arrays.
 template <bool mesh_aware>
 void SpatialHash::test_window(std::size_t a, std::size_t first, std::size_t last, double r2, double rest2,
                               std::vector<std::pair<int, int>>& pairs) const {
-  std::size_t end = pairs.size();
-  pairs.resize(end + (last - first));
   const double xa = px_[a], ya = py_[a], za = pz_[a];
-  const int pa = particle_[a];
   for (std::size_t b = first; b < last; ++b) {
     const double dx = px_[b] - xa, dy = py_[b] - ya, dz = pz_[b] - za;
-    bool keep = dx * dx + dy * dy + dz * dz < r2;
+    if (!(dx * dx + dy * dy + dz * dz < r2)) continue;
     if constexpr (mesh_aware) {
       const double ex = rx_[b] - rx_[a], ey = ry_[b] - ry_[a], ez = rz_[b] - rz_[a];
-      keep = keep & (ex * ex + ey * ey + ez * ez > rest2);
+      if (ex * ex + ey * ey + ez * ez <= rest2) continue;
     }
-    const int pb = particle_[b];
-    pairs[end] = {std::min(pa, pb), std::max(pa, pb)};
-    end += keep ? 1 : 0;
+    pairs.emplace_back(std::min(particle_[a], particle_[b]), std::max(particle_[a], particle_[b]));
   }
-  pairs.resize(end);
 }
 // [hash_window]
 
