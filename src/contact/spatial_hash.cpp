@@ -107,6 +107,7 @@ void SpatialHash::gather(const Eigen::Ref<const Eigen::VectorXd>& x) {
   const std::size_t n = sorted_.size();
   keys_.resize(n);
   particle_.resize(n);
+  close_.resize(n);
   px_.resize(n);
   py_.resize(n);
   pz_.resize(n);
@@ -131,20 +132,43 @@ std::pair<std::size_t, std::size_t> SpatialHash::run_of(std::uint64_t col) const
 }
 
 // [hash_window]
-// Entry a against the entries [first, last): the distance first, the rest positions only for a close pair. The
-// positions are read from contiguous arrays.
+// Entry a against the entries [first, last), without a branch on the outcome: in a crumpled cloth a large part of
+// the distances tested are close pairs, in an irregular order that defeats a processor's branch prediction, so
+// each entry is written to the end of a scratch list whose end moves past it only when it is kept (both tests,
+// the distance now and the distance at rest, computed for every entry from contiguous arrays).
 template <bool mesh_aware>
 void SpatialHash::test_window(std::size_t a, std::size_t first, std::size_t last, double r2, double rest2,
-                              std::vector<std::pair<int, int>>& pairs) const {
+                              std::vector<std::pair<int, int>>& pairs) {
   const double xa = px_[a], ya = py_[a], za = pz_[a];
-  for (std::size_t b = first; b < last; ++b) {
-    const double dx = px_[b] - xa, dy = py_[b] - ya, dz = pz_[b] - za;
-    if (!(dx * dx + dy * dy + dz * dz < r2)) continue;
-    if constexpr (mesh_aware) {
-      const double ex = rx_[b] - rx_[a], ey = ry_[b] - ry_[a], ez = rz_[b] - rz_[a];
-      if (ex * ex + ey * ey + ez * ez <= rest2) continue;
+  const double* px = px_.data();
+  const double* py = py_.data();
+  const double* pz = pz_.data();
+  const double* rx = rx_.data();
+  const double* ry = ry_.data();
+  const double* rz = rz_.data();
+  int* close = close_.data();
+  std::size_t kept = 0;
+  if constexpr (mesh_aware) {
+    const double rxa = rx[a], rya = ry[a], rza = rz[a];
+    for (std::size_t b = first; b < last; ++b) {
+      const double dx = px[b] - xa, dy = py[b] - ya, dz = pz[b] - za;
+      const double ex = rx[b] - rxa, ey = ry[b] - rya, ez = rz[b] - rza;
+      const unsigned keep = static_cast<unsigned>(dx * dx + dy * dy + dz * dz < r2) &
+                            static_cast<unsigned>(ex * ex + ey * ey + ez * ez > rest2);
+      close[kept] = static_cast<int>(b);
+      kept += keep;
     }
-    pairs.emplace_back(std::min(particle_[a], particle_[b]), std::max(particle_[a], particle_[b]));
+  } else {
+    for (std::size_t b = first; b < last; ++b) {
+      const double dx = px[b] - xa, dy = py[b] - ya, dz = pz[b] - za;
+      close[kept] = static_cast<int>(b);
+      kept += static_cast<unsigned>(dx * dx + dy * dy + dz * dz < r2);
+    }
+  }
+  const int pa = particle_[a];
+  for (std::size_t c = 0; c < kept; ++c) {
+    const int pb = particle_[static_cast<std::size_t>(close[c])];
+    pairs.emplace_back(std::min(pa, pb), std::max(pa, pb));
   }
 }
 // [hash_window]

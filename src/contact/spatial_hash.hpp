@@ -54,7 +54,7 @@ class SpatialHash {
   void sort_buckets();
   template <bool mesh_aware>
   void test_window(std::size_t a, std::size_t first, std::size_t last, double r2, double rest2,
-                   std::vector<std::pair<int, int>>& pairs) const;
+                   std::vector<std::pair<int, int>>& pairs);
   void gather(const Eigen::Ref<const Eigen::VectorXd>& x);
 
   double cell_;
@@ -66,6 +66,7 @@ class SpatialHash {
   std::vector<Keyed> sorted_;         // the same, in bucket order, then column, then height
   std::vector<std::uint64_t> keys_;   // the cell of each entry, in the sorted order
   std::vector<int> particle_;         // the particle of each entry
+  std::vector<int> close_;            // scratch: the entries of a window that a query keeps
   std::vector<double> px_, py_, pz_, rx_, ry_, rz_;  // positions and rest positions of the entries
 };
 
