@@ -91,7 +91,7 @@ void incline_study(const Study& study) {
 // scene itself (20 x 20 over 0.3 m, T = 10 s) with symplectic Euler for the animation.
 void sphere_study(const Study& study) {
   MarkdownTable table({"method", "keeps out by", "h [s]", "deepest after any step [% of thickness]",
-                       "kinetic energy at T / peak", "seconds"}, "llrrrr");
+                       "kinetic energy at T / peak", "processor seconds"}, "llrrrr");
   const double T = 4;
   const Grid small{10, 10, 0.05};
   ContactFlags small_sphere;

@@ -1,7 +1,8 @@
 // The stepping loop of Chapter 11's studies.
 #include "studies.hpp"
 
-#include <chrono>
+#include "program/timing.hpp"
+
 #include <cmath>
 
 using namespace cloth;
@@ -41,7 +42,7 @@ SteppedRun step_run(Stepper& stepper, const BuiltScene& built, double h, double 
   const long long stride = std::max(1LL, steps / frames);
   run.frames.push_back({0.0, run.x});
   const double m = built.params.mass;
-  const auto start = std::chrono::steady_clock::now();
+  const double start = thread_cpu_seconds();
   for (long long k = 1; k <= steps; ++k) {
     if (!stepper.step(h, run.x, run.v)) {
       run.ok = false;
@@ -55,7 +56,7 @@ SteppedRun step_run(Stepper& stepper, const BuiltScene& built, double h, double 
     if (after_step) after_step(run.x);
     if (k % stride == 0) run.frames.push_back({static_cast<double>(k) * h, run.x});
   }
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.seconds = thread_cpu_seconds() - start;
   return run;
 }
 

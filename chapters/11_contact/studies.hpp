@@ -36,7 +36,7 @@ struct SteppedRun {
   bool ok = true;
   std::string failure;
   double deepest = -1;         ///< largest penetration (thickness - phi) after any accepted step [m]
-  double seconds = 0;          ///< wall time of the steps
+  double seconds = 0;          ///< the thread's processor time of the steps (program/timing.hpp)
   long long steps = 0;
   std::vector<double> t, kinetic;  ///< after every step
   std::vector<cloth::Frame> frames;

@@ -80,7 +80,7 @@ Touch correct_displacement(const ContactModel& model, const Obstacle& obstacle, 
 
 // Particle s of (x1, v1) against every obstacle, the displacement measured from x0: the contacts corrected.
 int resolve_particle(const ContactModel& model, Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0,
-                     Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
+                     Eigen::Ref<Eigen::VectorXd>& x1, Eigen::Ref<Eigen::VectorXd>& v1) {
   int contacts = 0;
   Eigen::Vector3d n;
   for (const Obstacle& obstacle : model.obstacles) {
