@@ -42,13 +42,14 @@ class SelfCollision {
   /// are resolved, so the passes that follow read this list rather than query the hash again.
   void find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x);
 
-  /// The candidates for x: those of the last build while no particle has moved more than delta / 4 from where it
-  /// was then, else find_candidates(x). A pair closer than delta now was closer than delta + 2 (delta / 4) =
-  /// 1.5 delta at the build, so the kept list still holds every contact (a Verlet list with a skin).
+  /// The candidates for x: those of the last build while every particle's displacement since then lies within
+  /// delta / 4 of one displacement u common to all, else find_candidates(x). A pair left out was at least 1.5 delta
+  /// apart at the build and u does not bring it closer, so it is still at least 1.5 delta - 2 (delta / 4) = delta
+  /// apart: the kept list holds every contact (a Verlet list with a skin, measured from the common motion).
   void update_candidates(const Eigen::Ref<const Eigen::VectorXd>& x);
 
-  /// Whether some particle of x lies more than delta / 4 from where it was at the last build (or nothing was built):
-  /// then the candidates may miss a contact.
+  /// Whether some particle of x lies more than delta / 4 from its position at the last build moved by u, the centre
+  /// of the displacements' bounding box (or nothing was built): then the candidates may miss a contact.
   [[nodiscard]] bool moved_beyond_margin(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   /// One pass over the candidates: the pairs closer than delta (1 - 1e-3) parted to delta (part_pair). Returns the
