@@ -1,5 +1,6 @@
-// Self-collision's two parts against independent truth: the spatial hash finds exactly the close pairs that
-// comparing every pair finds, and the pair response conserves linear momentum.
+// Self-collision's parts against independent truth: the spatial hash finds exactly the close pairs that comparing
+// every pair finds, the pair response conserves linear momentum, and the passes that skip unmoved pairs end where
+// full passes do.
 #include "contact/self_collision.hpp"
 #include "contact/spatial_hash.hpp"
 
