@@ -90,7 +90,7 @@ void hash_benchmark(const Study& study) {
       self.find_candidates(x);
       self.resolve(x, v);
     });
-    // A step within the margin: the check that no particle moved a quarter thickness, and one pass.
+    // A step within the margin: the check of the kept list's margin, and one pass.
     const double kept = best_ms(20, [&] {
       self.update_candidates(x);
       self.resolve(x, v);

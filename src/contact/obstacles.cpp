@@ -78,32 +78,45 @@ Touch correct_displacement(const ContactModel& model, const Obstacle& obstacle, 
   return model.friction.mu_s > 0 && t.isZero(0) ? Touch::stuck : Touch::slid;
 }
 
+// Particle s of (x1, v1) against every obstacle, the displacement measured from x0: the contacts corrected.
+int resolve_particle(const ContactModel& model, Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                     Eigen::Ref<Eigen::VectorXd>& x1, Eigen::Ref<Eigen::VectorXd>& v1) {
+  int contacts = 0;
+  Eigen::Vector3d n;
+  for (const Obstacle& obstacle : model.obstacles) {
+    const Touch touch = correct_displacement(model, obstacle, x0.segment<3>(3 * s), x1.segment<3>(3 * s), n);
+    if (touch == Touch::none) continue;
+    ++contacts;
+    const Eigen::Vector3d v = v1.segment<3>(3 * s);
+    const double v_n = v.dot(n);
+    if (touch == Touch::stuck) {
+      // Held in place along the surface: no tangential velocity either, whatever the step's own velocity says.
+      // A step whose displacement is not h v1 (a Runge-Kutta method's weighted stages) can otherwise end with a
+      // velocity the particle never moves with, which its next step's stages then start from.
+      v1.segment<3>(3 * s) = std::max(v_n, 0.0) * n;
+    } else if (v_n < 0) {
+      // The velocity: an inward normal part stopped, its tangential part through the cone with that impulse.
+      v1.segment<3>(3 * s) = coulomb(v - v_n * n, -v_n, model.friction);
+    }
+  }
+  return contacts;
+}
+
 }  // namespace
 
 // [obstacle_contact]
 int resolve_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
                               Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
   int contacts = 0;
-  Eigen::Vector3d n;
-  const Eigen::Index particles = x1.size() / 3;
-  for (Eigen::Index s = 0; s < particles; ++s) {
-    for (const Obstacle& obstacle : model.obstacles) {
-      const Touch touch = correct_displacement(model, obstacle, x0.segment<3>(3 * s), x1.segment<3>(3 * s), n);
-      if (touch == Touch::none) continue;
-      ++contacts;
-      const Eigen::Vector3d v = v1.segment<3>(3 * s);
-      const double v_n = v.dot(n);
-      if (touch == Touch::stuck) {
-        // Held in place along the surface: no tangential velocity either, whatever the step's own velocity says.
-        // A step whose displacement is not h v1 (a Runge-Kutta method's weighted stages) can otherwise end with a
-        // velocity the particle never moves with, which its next step's stages then start from.
-        v1.segment<3>(3 * s) = std::max(v_n, 0.0) * n;
-      } else if (v_n < 0) {
-        // The velocity: an inward normal part stopped, its tangential part through the cone with that impulse.
-        v1.segment<3>(3 * s) = coulomb(v - v_n * n, -v_n, model.friction);
-      }
-    }
-  }
+  for (Eigen::Index s = 0; s < x1.size() / 3; ++s) contacts += resolve_particle(model, s, x0, x1, v1);
+  return contacts;
+}
+
+int resolve_obstacle_contacts(const ContactModel& model, const std::vector<int>& particles,
+                              const Eigen::Ref<const Eigen::VectorXd>& x0, Eigen::Ref<Eigen::VectorXd> x1,
+                              Eigen::Ref<Eigen::VectorXd> v1) {
+  int contacts = 0;
+  for (const int s : particles) contacts += resolve_particle(model, s, x0, x1, v1);
   return contacts;
 }
 // [obstacle_contact]

@@ -66,6 +66,11 @@ void validate(const ContactModel& model);
 /// tangential motion is not either.
 int resolve_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
                               Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1);
+/// The same for the listed particles only: after a pass of the self-contact response, the particles it moved (the
+/// others are where the last correction left them).
+int resolve_obstacle_contacts(const ContactModel& model, const std::vector<int>& particles,
+                              const Eigen::Ref<const Eigen::VectorXd>& x0, Eigen::Ref<Eigen::VectorXd> x1,
+                              Eigen::Ref<Eigen::VectorXd> v1);
 
 /// The displacement rule of resolve_obstacle_contacts alone, for methods whose velocities follow from their
 /// positions (XPBD: v = (x1 - x0) / h): the contacts as inequality constraints phi(x) >= thickness, projected,

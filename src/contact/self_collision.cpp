@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace cloth {
@@ -50,13 +51,28 @@ void SelfCollision::find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) 
   work_.pairs_found += static_cast<long long>(pairs_.size());
 }
 
+// [margin]
+// A pair left out of the list was at least 1.5 delta apart at the build. Its particles' displacements since then
+// are u + e_a and u + e_b for any common u, and a common motion does not bring them closer: they are now at least
+// 1.5 delta - |e_a| - |e_b| apart. So the list holds while every |x - x_built - u| <= delta / 4 for one u, and
+// the u that needs this least is near the centre of the displacements' bounding box: a strip toppling over as a
+// whole, or falling, keeps its list longer than the largest displacement alone would allow.
 bool SelfCollision::moved_beyond_margin(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   if (!candidates_current_ || built_at_.size() != x.size()) return true;
   const double margin2 = thickness_ * thickness_ / 16;
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), high = -low;
+  for (Eigen::Index s = 0; s < x.size(); s += 3) {
+    const Eigen::Vector3d moved = x.segment<3>(s) - built_at_.segment<3>(s);
+    low = low.cwiseMin(moved);
+    high = high.cwiseMax(moved);
+  }
+  const Eigen::Vector3d u = 0.5 * (low + high);
+  if (!((high - u).squaredNorm() > margin2)) return false;  // the box's half-diagonal bounds every |e|
   for (Eigen::Index s = 0; s < x.size(); s += 3)
-    if ((x.segment<3>(s) - built_at_.segment<3>(s)).squaredNorm() > margin2) return true;
+    if (!((x.segment<3>(s) - built_at_.segment<3>(s) - u).squaredNorm() <= margin2)) return true;  // a NaN too
   return false;
 }
+// [margin]
 
 void SelfCollision::update_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) {
   if (moved_beyond_margin(x)) {
@@ -68,8 +84,44 @@ void SelfCollision::update_candidates(const Eigen::Ref<const Eigen::VectorXd>& x
 }
 
 int SelfCollision::resolve(Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  const auto n = static_cast<std::size_t>(x.size() / 3);
   ++work_.passes;
-  const int corrected = resolve_self_contacts(pairs_, thickness_, x, v, 1e-3);
+  moved_before_.resize(n);
+  moved_now_.assign(n, 0);
+  moved_list_.clear();
+  const double reach = (1 - 1e-3) * thickness_;
+  int corrected = 0;
+  for (const auto& [a, b] : pairs_)
+    if (part_pair(a, b, thickness_, reach, x.data(), v.data())) {
+      ++corrected;
+      mark_moved(a);
+      mark_moved(b);
+    }
+  work_.pairs_corrected += corrected;
+  return corrected;
+}
+
+void SelfCollision::mark_moved(int p) {
+  if (moved_now_[static_cast<std::size_t>(p)] != 0) return;
+  moved_now_[static_cast<std::size_t>(p)] = 1;
+  moved_list_.push_back(p);
+}
+
+int SelfCollision::resolve_again(Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  ++work_.passes;
+  std::swap(moved_before_, moved_now_);
+  std::fill(moved_now_.begin(), moved_now_.end(), 0);
+  moved_list_.clear();
+  const double reach = (1 - 1e-3) * thickness_;
+  int corrected = 0;
+  for (const auto& [a, b] : pairs_) {
+    const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+    if ((moved_before_[ua] | moved_before_[ub] | moved_now_[ua] | moved_now_[ub]) == 0) continue;
+    if (!part_pair(a, b, thickness_, reach, x.data(), v.data())) continue;
+    ++corrected;
+    mark_moved(a);
+    mark_moved(b);
+  }
   work_.pairs_corrected += corrected;
   return corrected;
 }

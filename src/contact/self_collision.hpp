@@ -42,19 +42,29 @@ class SelfCollision {
   /// are resolved, so the passes that follow read this list rather than query the hash again.
   void find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x);
 
-  /// The candidates for x: those of the last build while no particle has moved more than delta / 4 from where it
-  /// was then, else find_candidates(x). A pair closer than delta now was closer than delta + 2 (delta / 4) =
-  /// 1.5 delta at the build, so the kept list still holds every contact (a Verlet list with a skin).
+  /// The candidates for x: those of the last build while every particle's displacement since then lies within
+  /// delta / 4 of one displacement u common to all, else find_candidates(x). A pair left out was at least 1.5 delta
+  /// apart at the build and u does not bring it closer, so it is still at least 1.5 delta - 2 (delta / 4) = delta
+  /// apart: the kept list holds every contact (a Verlet list with a skin, measured from the common motion).
   void update_candidates(const Eigen::Ref<const Eigen::VectorXd>& x);
 
-  /// Whether some particle of x lies more than delta / 4 from where it was at the last build (or nothing was built):
-  /// then the candidates may miss a contact.
+  /// Whether some particle of x lies more than delta / 4 from its position at the last build moved by u, the centre
+  /// of the displacements' bounding box (or nothing was built): then the candidates may miss a contact.
   [[nodiscard]] bool moved_beyond_margin(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
-  /// One pass over the candidates: the pairs closer than delta (1 - 1e-3) parted to delta (resolve_self_contacts).
-  /// Returns the pairs corrected; a caller repeats it until none is (a correction may bring another pair too
+  /// One pass over the candidates: the pairs closer than delta (1 - 1e-3) parted to delta (part_pair). Returns the
+  /// pairs corrected; a caller repeats it (resolve_again) until none is (a correction may bring another pair too
   /// close), and the passes end once every pair is within a thousandth of the thickness.
   int resolve(Eigen::VectorXd& x, Eigen::VectorXd& v);
+
+  /// The next pass, over the candidates that may have changed since the last: those with a particle that the last
+  /// pass moved (listed by moved(), which is all the obstacles' correction between passes may move) or that this
+  /// pass moved before reaching them. Every other pair is where the last pass found it, or left it, apart, so the
+  /// result is that of a full pass, for a sweep over one byte per particle rather than the positions.
+  int resolve_again(Eigen::VectorXd& x, Eigen::VectorXd& v);
+
+  /// The particles the last pass moved, each once.
+  [[nodiscard]] const std::vector<int>& moved() const { return moved_list_; }
 
   /// The candidates of the last find_candidates.
   [[nodiscard]] const std::vector<std::pair<int, int>>& candidates() const { return pairs_; }
@@ -73,6 +83,7 @@ class SelfCollision {
 
  private:
   [[nodiscard]] bool apart_at_rest(int a, int b) const;
+  void mark_moved(int p);  // flags p in moved_now_ and lists it, once
 
   Eigen::VectorXd rest_;
   Eigen::VectorXd built_at_;  // the positions of the last find_candidates
@@ -80,6 +91,8 @@ class SelfCollision {
   double thickness_;
   SpatialHash hash_;
   std::vector<std::pair<int, int>> pairs_;  // reused: a step allocates nothing once it has seen its most pairs
+  std::vector<unsigned char> moved_before_, moved_now_;  // per particle: moved by the last pass, by this one
+  std::vector<int> moved_list_;                         // the particles moved_now_ flags
   SelfCollisionWork work_;
 };
 

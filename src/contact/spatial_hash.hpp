@@ -10,16 +10,19 @@
 
 namespace cloth {
 
-/// Particles binned by the cubic cell of side `cell` they lie in, each cell (i, j, k) hashed to one of a fixed
-/// number of buckets by Teschner et al.'s h = i p1 xor j p2 xor k p3 with p1 = 73856093, p2 = 19349663,
-/// p3 = 83492791, reduced to [0, buckets) by a multiplication rather than their mod (a division per cell). The
-/// particles are stored as one array sorted by bucket (a counting sort) and, within a bucket, by cell, so each
-/// occupied cell is one contiguous run: a query reads the neighbouring cells once per cell, not once per particle.
-/// A build allocates nothing once the hash has seen its largest cloud.
+/// Particles binned by the cubic cell of side `cell` they lie in. Cells are grouped into columns (i, j), the cells
+/// of one column one above the other, and each column is hashed to one of a fixed number of buckets by Teschner et
+/// al.'s h = i p1 xor j p2 with p1 = 73856093, p2 = 19349663, reduced to [0, buckets) by a multiplication rather
+/// than their mod (a division per column). The particles are stored as one array sorted by bucket (a counting sort)
+/// and, within a bucket, by column and then by height k, so that each column is one contiguous run ordered upwards:
+/// a query looks up each neighbouring column once per column and walks up it beside its own, where a hash of
+/// cells would look up each of 13 neighbouring cells once per cell. Positions are stored coordinate by coordinate
+/// in that order, so a query reads them as contiguous arrays. A build allocates nothing once the hash has seen its
+/// largest cloud.
 class SpatialHash {
  public:
   /// Cells of side `cell` (no smaller than the largest r queried, so that a query looks at a cell and its neighbours
-  /// only) and `buckets` buckets (about twice the particles keeps collisions of distinct cells rare).
+  /// only) and `buckets` buckets (about twice the particles keeps collisions of distinct columns rare).
   SpatialHash(double cell, int buckets);
 
   /// Bins the particles of x (3 coordinates per particle).
@@ -39,31 +42,42 @@ class SpatialHash {
   [[nodiscard]] long long distance_tests() const { return distance_tests_; }
 
  private:
-  struct Entry {
-    Eigen::Vector3d x, rest;
+  struct Keyed {
+    std::uint64_t key;  // column (i, j) in the high bits, height k in the low ones
     int particle;
   };
 
-  [[nodiscard]] std::uint64_t key_of(const Eigen::Ref<const Eigen::Vector3d>& x) const;
-  [[nodiscard]] static std::uint64_t neighbour(std::uint64_t key, int di, int dj, int dk);
-  [[nodiscard]] int bucket(std::uint64_t key) const;
-  /// The run [first, last) of the entries that lie in the cell `key`; empty when none do.
-  [[nodiscard]] std::pair<std::size_t, std::size_t> run_of(std::uint64_t key) const;
-  void sort_buckets_by_cell();
+  [[nodiscard]] std::uint64_t key_of(double x, double y, double z) const;
+  [[nodiscard]] int bucket(std::uint64_t column) const;
+  /// The run [first, last) of the entries that lie in the column `column`; empty when none do.
+  [[nodiscard]] std::pair<std::size_t, std::size_t> run_of(std::uint64_t column) const;
+  void sort_buckets();
+  template <bool mesh_aware>
+  void test_window(std::size_t a, std::size_t first, std::size_t last, double r2, double rest2,
+                   std::vector<std::pair<int, int>>& pairs);
+  void gather(const Eigen::Ref<const Eigen::VectorXd>& x);
 
   double cell_;
   int buckets_;
   bool has_rest_ = false;
   long long distance_tests_ = 0;
-  std::vector<int> bucket_start_;            // entries of bucket b: entries_[bucket_start_[b] .. bucket_start_[b + 1])
-  std::vector<std::uint64_t> particle_keys_;  // the cell of each particle
-  std::vector<std::uint64_t> keys_;           // the cell of each entry: the array a query scans for a cell's run
-  std::vector<Entry> entries_;               // each particle with its positions, in bucket order, then cell order
+  std::vector<int> bucket_start_;  // entries of bucket b: [bucket_start_[b], bucket_start_[b + 1])
+  std::vector<Keyed> particle_keys_;  // each particle's cell, in particle order
+  std::vector<Keyed> sorted_;         // the same, in bucket order, then column, then height
+  std::vector<std::uint64_t> keys_;   // the cell of each entry, in the sorted order
+  std::vector<int> particle_;         // the particle of each entry
+  std::vector<int> close_;            // scratch: the entries of a window that a query keeps
+  std::vector<double> px_, py_, pz_, rx_, ry_, rz_;  // positions and rest positions of the entries
 };
 
 /// The pairs a brute-force comparison of every pair finds: the independent check of the hash.
 [[nodiscard]] std::vector<std::pair<int, int>> pairs_within_brute_force(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                                         double r);
+
+/// The response to one pair (a, b) of equal-mass particles of x and v (3 coordinates each) closer than `reach`:
+/// parted along the line between them to `thickness`, its approaching normal velocity removed. Returns whether it
+/// moved them.
+bool part_pair(int a, int b, double thickness, double reach, double* x, double* v);
 
 /// The response to self-contact of equal-mass particles: each pair (a, b) closer than `thickness` is pushed apart
 /// along n = (x_b - x_a) / |x_b - x_a|, each by half of what is missing, and its approaching normal relative
