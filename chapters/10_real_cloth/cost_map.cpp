@@ -4,6 +4,7 @@
 #include "real_cloth.hpp"
 
 #include "analysis/lattice_frequency.hpp"
+#include "integrators/configuration.hpp"
 #include "program/fragment.hpp"
 
 #include <algorithm>
@@ -37,7 +38,7 @@ double measure_step_cost(int n, const std::string& method, int steps) {
 std::string cost_proxy(const std::string& method) {
   if (method == "implicit_euler/exact") return "implicit_euler/one/exact";
   if (method == "implicit_euler/cg") return "implicit_euler/one/cg";
-  if (method.rfind("local_global", 0) == 0) return "local_global";
+  if (parse_configuration(method).method == "local_global") return "local_global";
   return method;
 }
 
