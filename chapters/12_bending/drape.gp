@@ -16,6 +16,9 @@ set xlabel "y [m]"
 set ylabel "z [m]"
 set size ratio -1
 unset key
+unset xlabel
+unset ylabel
+unset zlabel
 plot for [k=0:4] data.'/drape_profile.dat' index 2*k u 1:2 w lp pt 7 ps 0.4 dt 2 lc rgb word(colors, k+1), \
      for [k=0:4] data.'/drape_profile.dat' index 2*k+1 u 1:2 w lp pt 7 ps 0.5 lw 2 lc rgb word(colors, k+1)
 unset multiplot
@@ -32,6 +35,9 @@ unset border
 unset tics
 unset grid
 unset key
+unset xlabel
+unset ylabel
+unset zlabel
 set size noratio
 set parametric
 set isosamples 13, 9
