@@ -1,13 +1,16 @@
 // Chapter 12's real fabrics: the standard's 41.5 degree reading done on simulated strips of measured fabrics, against
-// the bending length their measured rigidity implies (fabrics.md).
+// the bending length their measured rigidity implies (fabrics.md), and each strip beside its elastica (fabrics.dat).
 #include "report.hpp"
 
 #include "analysis/cantilever.hpp"
+#include "analysis/elastica.hpp"
 #include "base/format_number.hpp"
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
+#include "program/output.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -33,9 +36,8 @@ constexpr Fabric fabrics[] = {
     {"heavy (row 4)", 0.2776, 68681.4e-9},
 };
 
-// The tip chord's angle of the hinge strip of length L at rest, 20 spacings along it, 2.5 cm wide.
-double chord_angle(const Fabric& f, double L) {
-  throw_if_interrupted();
+// The hinge strip of length L, 20 spacings along it, 2.5 cm wide.
+CantileverParams fabric_strip(const Fabric& f, double L) {
   CantileverParams p;
   p.model = BendingModel::hinge;
   p.overhang = L;
@@ -43,10 +45,21 @@ double chord_angle(const Fabric& f, double L) {
   p.width = 0.025;
   p.areal_density = f.areal_density;
   p.bending_rigidity = f.bending_rigidity;
-  Cantilever strip(p);
+  return p;
+}
+
+// The strip at rest, from the elastica's shape.
+CantileverRest at_rest(Cantilever& strip) {
+  throw_if_interrupted();
   const CantileverRest rest = strip.rest_shape(CantileverStart::elastica, 1e-9, 300, &interrupt_flag());
   throw_if_interrupted();
-  return rest.chord_angle;
+  return rest;
+}
+
+// The tip chord's angle of the strip of length L at rest.
+double chord_angle(const Fabric& f, double L) {
+  Cantilever strip(fabric_strip(f, L));
+  return at_rest(strip).chord_angle;
 }
 
 // The overhang at which the simulated strip's tip chord reaches 41.5 degrees, by bisection on L: the standard's
@@ -65,16 +78,31 @@ double simulated_reading(const Fabric& f) {
 
 }  // namespace
 
+// fabrics.dat: per fabric, two gnuplot index blocks, the elastica at the reading's lambda and the simulated strip at
+// rest, as centre lines (x, z) in cm from the clamp; the strip's block opens with its title for the figure's key.
 void write_fabrics(const std::string& dir, const std::string& command) {
   MarkdownTable table({"fabric", "rho_A [kg/m^2]", "B [1e-6 N m]", "c = (B / (rho_A g))^(1/3) [cm]",
                        "overhang at 41.5 degrees, hinge [cm]", "bending length read, L / 2 [cm]", "difference"},
                       "lrrrrrr");
+  OutputFile file(dir + "/fabrics.dat");
+  std::FILE* out = file.get();
+  std::fprintf(out, "# the standard's reading on each fabric: x [cm] along the clamp's direction, z [cm] up\n");
   for (const Fabric& f : fabrics) {
     const double c = std::cbrt(f.bending_rigidity / (f.areal_density * 9.81));
     const double L = simulated_reading(f);
     table.add_row({f.name, format_number(f.areal_density, 4), format_number(1e6 * f.bending_rigidity, 4),
                    format_fixed(100 * c, 3), format_fixed(100 * L, 3), format_fixed(50 * L, 3),
                    format_number(100 * (L / 2 / c - 1), 2) + " %"});
+    Cantilever strip(fabric_strip(f, L));
+    const CantileverRest rest = at_rest(strip);
+    const ElasticaShape exact = heavy_elastica(strip.lambda(), 200);
+    std::fprintf(out, "# %s: the heavy elastica, lambda = %.6g, L = %.6g cm\n", f.name, strip.lambda(), 100 * L);
+    for (std::size_t k = 0; k < exact.x.size(); ++k)
+      std::fprintf(out, "%.8g %.8g\n", 100 * L * exact.x[k], -100 * L * exact.y[k]);
+    std::fprintf(out, "\n\n\"%s, c = %s cm\" \"\"\n", f.name, format_fixed(100 * c, 2).c_str());
+    write_centre_line(out, strip, rest.x, 0.01);
+    std::fprintf(out, "\n\n");
   }
+  file.commit();
   write_table_fragment(dir + "/fabrics.md", table, command);
 }

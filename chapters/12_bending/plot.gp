@@ -41,3 +41,23 @@ plot G u 2:3 w lp pt 7 lw 2 lc rgb "#1f77b4" t "hinge", \
      G u 2:5 w lp pt 6 lw 2 lc rgb "#2ca02c" t "quadratic", \
      G u 2:7 w lp pt 4 lw 2 lc rgb "#d62728" t "flexion springs (K from B at 20 /m)", \
      G u 2:(0.25*($2*20)**2*0.002) w l dt 2 lc rgb "#888888" t "slope 2"
+
+# 3. The standard's reading on the four fabrics: each strip at the overhang where its tip chord reaches 41.5 degrees
+# (points), its elastica at the same lambda (line), and the standard's 41.5 degree line through the clamp.
+set output plots.'/ch12_fabrics.png'
+set title "Four fabrics at the overhang of the 41.5 degree reading: hinge strips at L/20 against the heavy elastica"
+set xlabel "x [cm]"
+set ylabel "z [cm]"
+unset logscale
+set format x "%g"
+set format y "%g"
+set size ratio -1
+set xrange [0:5.5]
+set yrange [-4.5:0.3]
+set key inside left bottom font ",10" box opaque
+H = data.'/fabrics.dat'
+colors = "#1f77b4 #2ca02c #ff7f0e #d62728"
+plot -tan(41.5*pi/180)*x w l dt 2 lc rgb "#888888" t "41.5 degrees below the clamp", \
+     NaN w l lw 2 lc rgb "#333333" t "heavy elastica (line)", \
+     for [k=0:3] H index 2*k u 1:2 w l lw 2 lc rgb word(colors, k+1) notitle, \
+     for [k=0:3] H index 2*k+1 u 1:2 w p pt 7 ps 0.9 lc rgb word(colors, k+1) t columnheader(1)

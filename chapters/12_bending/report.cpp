@@ -82,19 +82,9 @@ void write_shapes(const std::string& dir, const std::string& command) {
       const CantileverParams p = test_strip(model, lambda, 20);
       const Measured m = measure(p);
       row.push_back(m.rest.converged ? cell(m.rest.tip_deflection / p.overhang, m.rest.chord_angle) : "not at rest");
-      Cantilever strip(p);
-      const Grid& g = strip.scene().grid();
-      std::fprintf(out, "\n\n# lambda %g %s (%s)\n0 0\n", lambda, bending_models().name(model),
+      std::fprintf(out, "\n\n# lambda %g %s (%s)\n", lambda, bending_models().name(model),
                    m.rest.converged ? "at rest" : "not at rest");
-      for (int i = 2; i < g.M; ++i) {
-        double x = 0, z = 0;
-        for (int j = 0; j < g.N; ++j) {
-          const int s = strip.scene().slot(g.particle(i, j));
-          x += m.rest.x[3 * s] / g.N;
-          z += m.rest.x[3 * s + 2] / g.N;
-        }
-        std::fprintf(out, "%.8g %.8g\n", (x - g.d) / p.overhang, z / p.overhang);
-      }
+      write_centre_line(out, Cantilever(p), m.rest.x, p.overhang);
     }
     std::fprintf(out, "\n\n");
     table.add_row(row);
@@ -186,6 +176,20 @@ void write_peirce(const std::string& dir, const std::string& command) {
 
 }  // namespace
 
+void write_centre_line(std::FILE* out, const Cantilever& strip, const Vector& x, double unit) {
+  const Grid& g = strip.scene().grid();
+  std::fprintf(out, "0 0\n");  // the clamp line, row 1: row 0 behind it holds the slope
+  for (int i = 2; i < g.M; ++i) {
+    double xi = 0, zi = 0;
+    for (int j = 0; j < g.N; ++j) {
+      const int s = strip.scene().slot(g.particle(i, j));
+      xi += x[3 * s] / g.N;
+      zi += x[3 * s + 2] / g.N;
+    }
+    std::fprintf(out, "%.8g %.8g\n", (xi - g.d) / unit, zi / unit);
+  }
+}
+
 OutputList report_outputs() {
   using namespace cloth::output_kinds;
   return {{"shapes.dat", figure, "the strips' centre lines at rest against the elastica, per lambda and model"},
@@ -195,6 +199,7 @@ OutputList report_outputs() {
           {"split.md", fragment, "one triangulation against both superposed, tip errors"},
           {"peirce.md", fragment, "lambda for each tip chord angle, elastica against Peirce's formula"},
           {"fabrics.md", fragment, "the standard's 41.5 degree reading on simulated real fabrics"},
+          {"fabrics.dat", figure, "each fabric's strip at the reading's overhang and its elastica, in cm"},
           {"cost.md", fragment, "one force and one Hessian evaluation of each bending term beside the springs'"},
           {"stable_step.md", fragment, "the fastest bending mode against the springs' as the spacing halves"},
           {"rolled.md", fragment, "a rolled sheet released: XPBD and local/global with bending against implicit Euler"}};

@@ -3,8 +3,10 @@
 // fabrics, and what bending costs beside the springs.
 #pragma once
 
+#include "analysis/cantilever.hpp"
 #include "program/output_spec.hpp"
 
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -26,6 +28,10 @@ void write_stable_step(const std::string& dir, const std::string& command);
 void write_rolled(const std::string& dir, const std::string& command);
 /// The part in fabrics.cpp: fabrics.md, the standard's 41.5 degree reading on simulated strips of measured fabrics.
 void write_fabrics(const std::string& dir, const std::string& command);
+
+/// The strip's centre line at free positions `x`, one "x z" line per row from the clamp line (0, 0) to the tip,
+/// along the clamp's direction and up, the rows averaged across the strip, in units of `unit` [m].
+void write_centre_line(std::FILE* out, const cloth::Cantilever& strip, const cloth::Vector& x, double unit);
 
 /// The median over 5 runs of the mean processor time of 5 calls of `work` [s] (program/timing.hpp).
 double median_seconds(const std::function<void()>& work);
