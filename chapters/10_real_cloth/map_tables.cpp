@@ -97,7 +97,7 @@ const Row* fastest(const Part& p, const std::string& side, double level) {
 
 // [map_cell]
 /// The cell: the fastest run that reached `level`; else the cost model's prediction from each ladder's last two
-/// rungs, error ~ seconds^-q, marked as predicted.
+/// rungs, error ~ seconds^-q, marked as predicted, when it lies within a hundred times the last rung's time.
 std::string best(const Part& p, const std::string& side, double level) {
   if (const Row* r = fastest(p, side, level)) return format("%s: %.3g s", who(*r).c_str(), r->seconds);
   double predicted = INFINITY;
@@ -111,6 +111,7 @@ std::string best(const Part& p, const std::string& side, double level) {
     const double q = std::log(a.error / b.error) / std::log(b.seconds / a.seconds);
     if (!(q > 0.2) || !(b.seconds > a.seconds)) continue;  // no convergence to extrapolate
     const double t = b.seconds * std::pow(b.error / level, 1 / q);
+    if (t > 100 * b.seconds) continue;  // two rungs say nothing of a time a hundred times beyond the last
     if (t < predicted) predicted = t, by = b.program + (b.side == "peer" ? " (" + b.forces + " forces)" : "");
   }
   if (std::isfinite(predicted)) return format("*predicted* %s: %.2g s", by.c_str(), predicted);
