@@ -82,7 +82,7 @@ TEST_CASE("the rest shape does not depend on where the search starts: flat and a
   CHECK((from_flat.x - from_elastica.x).lpNorm<Eigen::Infinity>() <= 1e-9 * c.params().overhang);
 }
 
-TEST_CASE("at L/160 the hinge strip reaches rest above the forces' rounding, and its tip error is a quarter of L/80's "
+TEST_CASE("at L/160 the hinge strip reaches rest above the forces' rounding and its tip error is a quarter of L/80's "
           "plus the springs' stretch" * doctest::test_suite("slow")) {
   // The search stops where the forces are as small as rounding lets them be: a coordinate of size L + W carries
   // eps (L + W), a spring's force K eps (L + W). At L/160 a particle weighs 7.7e-7 N and the search stalls near
