@@ -34,6 +34,12 @@ class Token:
         self.line = line
 
 
+def block_comment_end(source, i):
+    """The index just past the /* ... */ comment that starts at i (the end of the text if it never closes)."""
+    end = source.find("*/", i + 2)
+    return len(source) if end < 0 else end + 2
+
+
 def tokens(source):
     """The tokens of `source` that matter for finding bodies: identifiers, numbers, punctuators; each string or
     character literal is one token "S"; comments and preprocessor lines are dropped."""
@@ -57,8 +63,7 @@ def tokens(source):
         if c == "#" and at_line_start:  # a preprocessor line, with its continuations and comments
             while i < n and source[i] != "\n":
                 if source.startswith("/*", i):
-                    end = source.find("*/", i + 2)
-                    end = n if end < 0 else end + 2
+                    end = block_comment_end(source, i)
                     line += source.count("\n", i, end)
                     i = end
                     continue
@@ -81,8 +86,7 @@ def tokens(source):
                 i += 1
             continue
         if source.startswith("/*", i):
-            end = source.find("*/", i + 2)
-            end = n if end < 0 else end + 2
+            end = block_comment_end(source, i)
             line += source.count("\n", i, end)
             i = end
             continue
