@@ -174,6 +174,9 @@ double measure_part(const MapPart& part, const SweepPlan& plan, const std::strin
       std::printf("  %-4s %-24s %-5s %-40s %8.3f s  error %.3g %s\n", series.side.c_str(), series.program.c_str(),
                   series.forces.c_str(), series.setting(k).c_str(), run.seconds, error.over_frames, run.note.c_str());
       std::fflush(stdout);
+      // The rows so far, kept beside the part's file: a sweep stopped in the middle of an hours-long part keeps
+      // what it measured (the tables read only finished parts).
+      write_text(dir, "map_" + part.name() + ".dat.partial", dat);
       last_seconds = run.seconds;
       if (!run.ok) {
         if (++failed == 3) break;  // three rungs in a row that did not finish: the ladder has no finer luck coming
@@ -191,6 +194,7 @@ double measure_part(const MapPart& part, const SweepPlan& plan, const std::strin
   }
   // [map_measure]
   write_text(dir, "map_" + part.name() + ".dat", dat);
+  std::remove((dir + "/map_" + part.name() + ".dat.partial").c_str());
   return reference_seconds;
 }
 
