@@ -57,7 +57,7 @@ TEST_CASE("the map's cost model: a measured growth per doubling predicts the nex
   // The check of the rule on the measured 40 x 40 part: from the one grid below it, the a-priori p = 3, at its own
   // horizon: 1 s x 8 x 0.4 / 0.6 = 5.33 s against the 12 s measured.
   const std::string check = cloth_test::read_text(dir.path() / "map_validation.md");
-  CHECK(check.find("| curtain | 40 x 40 | 10⁵ | 1 mm | the book | rk4: 5.3 s (n^3) | rk4: 12 s | " +
+  CHECK(check.find(std::string("| curtain | 40 x 40 | 10⁵ | 1 mm | the book | rk4: 5.3 s (n^3) | rk4: 12 s | ") +
                    printed("%.2f", 12 / (8 * 0.4 / 0.6)) + " |") != std::string::npos);
   // A measured part keeps its measured cells.
   CHECK(curtain.find("| 40 x 40 | 10⁵ | 1.5 m to 0.4 s | 1 mm | rk4, h = 1/5520: 12 s |") != std::string::npos);
