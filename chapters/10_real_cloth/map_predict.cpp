@@ -126,7 +126,7 @@ std::vector<std::vector<std::string>> predicted_rows(const MeasuredPart* coarser
 MarkdownTable validation_table(const std::vector<MeasuredPart>& parts) {
   MarkdownTable t({"scene", "grid", "K [N/m]", "accuracy over the frames", "column", "predicted from the grids below",
                    "measured", "measured / predicted"},
-                  "lrrlllrr");
+                  "lrrllllr");
   for (const MeasuredPart& p : parts) {
     const auto [coarser, finer] = grids_below(parts, p.part);
     if (finer == nullptr) continue;
