@@ -33,7 +33,9 @@ OutputList map_outputs(const std::vector<ch10::MapPart>& parts, bool tables, boo
     files = files + OutputList{{"map_curtain.md", quick ? OutputKind::fragment : OutputKind::data,
                                 "the fastest program to each level on the curtain, per grid and K"},
                                {"map_swing.md", OutputKind::data,
-                                "the fastest program to each level on the swinging curtain, per grid and K"}};
+                                "the fastest program to each level on the swinging curtain, per grid and K"},
+                               {"map_validation.md", OutputKind::data,
+                                "each measured cell against the cost model's prediction from the grids below"}};
   return files;
 }
 

@@ -45,9 +45,10 @@ struct SweepPlan {
 /// reference's processor seconds (for the cost model of the next parts).
 double measure_part(const MapPart& part, const SweepPlan& plan, const std::string& dir, const std::string& command);
 
-/// Reads every `map_PART.dat` in `dir` and writes the map's fragments there (map_curtain.md, map_swing.md);
-/// returns their names. With `predict_missing`, each part of the full map without a file gets the explicit
-/// winners of the nearest smaller measured grid scaled by the cost model, marked as predicted.
+/// Reads every `map_PART.dat` in `dir` and writes the map's fragments there (map_curtain.md, map_swing.md, and
+/// map_validation.md, the cost model's check); returns their names. With `predict_missing`, each part of the full
+/// map without a file gets every column predicted by the cost model from the two largest measured grids below it
+/// (map_parts.hpp), marked as predicted.
 std::vector<std::string> write_map_tables(const std::string& dir, const std::string& command, bool predict_missing);
 
 }  // namespace ch10
