@@ -33,6 +33,7 @@ cloth::OutputList report_outputs() {
           {"sphere_rest.md", fragment, "the scene's drape at 10 s: kinetic energy over its peak, deepest penetration"},
           {"fold.md", fragment, "the folding strip: closest pair, passes, hash builds, cost against the forces"},
           {"fold_frames.dat", figure, "frames of the strip folding"},
+          {"skin.md", fragment, "the fold with each skin of the kept list: builds, candidates, cost against the forces"},
           {"hash.md", fragment, "a step's self-collision against a force evaluation, 30 x 100 to 30 x 800"},
           {"edge_crossing.md", fragment, "whether two crossing edges pass through each other, by spacing"}};
 }
@@ -48,6 +49,7 @@ int run_report(int argc, char** argv, const cloth::Options& opt) {
   sphere_study(study);
   sdirk2_rest_study(study);
   fold_study(study);
+  skin_study(study);
   hash_benchmark(study);
   edge_crossing_study(study);
   return 0;

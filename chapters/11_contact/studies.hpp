@@ -52,6 +52,7 @@ void incline_study(const Study& study);
 void sphere_study(const Study& study);
 void sdirk2_rest_study(const Study& study);
 void fold_study(const Study& study);
+void skin_study(const Study& study);
 void hash_benchmark(const Study& study);
 void edge_crossing_study(const Study& study);
 
