@@ -50,8 +50,8 @@ struct ContactModel {
   double skin = 0.25;
 };
 
-/// Throws InputError naming the first parameter out of range (thickness > 0, skin in (0, 1], 0 <= mu_k <= mu_s, unit normals,
-/// radius > 0, everything finite).
+/// Throws InputError naming the first parameter out of range (thickness > 0, skin in (0, 1], 0 <= mu_k <= mu_s,
+/// unit normals, radius > 0, everything finite).
 void validate(const ContactModel& model);
 
 /// Corrects the end (x1, v1) of a step that started at x0 for contact with the obstacles, particle by particle

@@ -40,7 +40,7 @@ class SelfCollision {
   int clamp(const Eigen::Ref<const Eigen::VectorXd>& x0, double h, Eigen::Ref<Eigen::VectorXd> x1,
             Eigen::Ref<Eigen::VectorXd> v1) const;
 
-  /// Builds the hash on x and keeps the candidate pairs: closer than 1.5 delta (the reach), and farther than 2 delta apart at
+  /// Builds the hash on x and keeps the candidate pairs: closer than 1.5 delta, and farther than 2 delta apart at
   /// rest (the hash leaves the mesh's neighbours out as it finds them). Particles move little while their contacts
   /// are resolved, so the passes that follow read this list rather than query the hash again.
   void find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x);
