@@ -464,6 +464,7 @@ TEST_CASE("ch11_contact: bad input gives status 2, one line naming the flag, not
                      {{"--method", "implicit_euler", "--jacobian", "exact"}, {"--jacobian", "expected definite"}},
                      {{"--method", "rk4", "--newton", "full"}, {"--newton", "rk4 has no Newton iteration"}},
                      {{"--scene", "fold", "--sphere-radius", "0"}, {"--sphere-radius", "> 0"}},
+                     {{"--scene", "fold", "--skin", "1.5"}, {"--skin", "(0, 1]"}},
                      {{"--quick"}, {"--quick", "--report-runs"}},
                      {{"--scene", "fold", "--method", "implicit_euler"}, {"--method implicit_euler", "self-collision"}},
                      {{"--report-runs", "--scene", "fold"}, {"--scene", "--quick and --out only"}},

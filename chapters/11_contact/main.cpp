@@ -67,6 +67,13 @@ void add_contact_flags(CommandLine& cli, SceneKind& kind, ContactFlags& f) {
                 [&](const std::string& s) { f.thickness = above_zero(s); });
   cli.add_value("--sphere-radius", "r", "sphere scene: the sphere's radius [m], > 0 (default 0.3)",
                 [&](const std::string& s) { f.sphere_radius = above_zero(s); });
+  cli.add_value("--skin", "s",
+                "fold scene: self-collision's skin, a fraction of the thickness in (0, 1] (default 0.25): the "
+                "pairs within (1 + 2 s) thickness are kept until a particle moves s thickness beyond the common motion",
+                [&](const std::string& s) {
+                  f.skin = parse_number(s);
+                  if (!(f.skin > 0 && f.skin <= 1)) throw InputError(s + ": expected a fraction in (0, 1]");
+                });
 }
 
 // The single run: place the scene, choose how the method keeps out of the obstacles, step, write.
@@ -100,6 +107,7 @@ int single_run(Options& opt, SceneKind kind, const ContactFlags& flags, const st
     for (const Frame& f : result.frames) closest = std::min(closest, check.closest_distance(f.positions, 2));
     const SelfCollisionWork& work = wrapped->self_collision()->work();
     lines.emplace_back("closest_self_distance_frames", format_number(closest, 4));
+    lines.emplace_back("self_collision_builds", std::to_string(work.builds));
     lines.emplace_back("self_collision_passes", std::to_string(work.passes));
     lines.emplace_back("self_collision_candidates", std::to_string(work.pairs_found));
     lines.emplace_back("self_collision_corrected", std::to_string(work.pairs_corrected));

@@ -30,9 +30,11 @@ cloth::OutputList report_outputs() {
           {"sphere_energy.dat", figure, "kinetic energy over its peak, one block per method"},
           {"sphere_frames.dat", figure, "frames of the 20 x 20 sheet draping over the sphere"},
           {"sdirk2_rest.md", fragment, "SDIRK2 on the drape at three steps: energy left, the fastest velocity and its motion"},
+          {"sdirk2_stages.md", fragment, "SDIRK2 at 10 ms, corrected after the step or filtered in each stage"},
           {"sphere_rest.md", fragment, "the scene's drape at 10 s: kinetic energy over its peak, deepest penetration"},
           {"fold.md", fragment, "the folding strip: closest pair, passes, hash builds, cost against the forces"},
           {"fold_frames.dat", figure, "frames of the strip folding"},
+          {"skin.md", fragment, "the fold with each skin of the kept list: builds, candidates, cost"},
           {"hash.md", fragment, "a step's self-collision against a force evaluation, 30 x 100 to 30 x 800"},
           {"edge_crossing.md", fragment, "whether two crossing edges pass through each other, by spacing"}};
 }
@@ -47,7 +49,9 @@ int run_report(int argc, char** argv, const cloth::Options& opt) {
   incline_study(study);
   sphere_study(study);
   sdirk2_rest_study(study);
+  sdirk2_stages_study(study);
   fold_study(study);
+  skin_study(study);
   hash_benchmark(study);
   edge_crossing_study(study);
   return 0;

@@ -52,6 +52,7 @@ ContactModel place_scene(SceneKind kind, const ContactFlags& flags, SceneParams&
   ContactModel model;
   model.thickness = flags.thickness > 0 ? flags.thickness : default_thickness(kind);
   model.friction = {flags.mu_s, flags.mu_k};
+  model.skin = flags.skin;
   const Grid& g = params.grid;
   if (kind == SceneKind::incline) {
     // The plane through the origin with normal (sin theta, 0, cos theta), downhill along +x; the sheet lies on
@@ -90,6 +91,7 @@ ContactModel place_scene(SceneKind kind, const ContactFlags& flags, SceneParams&
   lines.emplace_back("mu_k", format_number(flags.mu_k));
   lines.emplace_back("thickness", format_number(model.thickness));
   lines.emplace_back("self_collision", model.self_collision ? "hash" : "none");
+  if (model.self_collision) lines.emplace_back("skin", format_number(model.skin));
   return model;
 }
 // [place_scene]

@@ -20,6 +20,7 @@ struct ContactFlags {
   double mu_k = 0.2;
   double thickness = 0;  ///< 0: the scene's default (5 mm for the sheets, 1 cm for the strip)
   double sphere_radius = 0.3;
+  double skin = 0.25;  ///< self-collision's skin, a fraction of the thickness (fold scene)
 };
 
 /// The scene's defaults of the common flags, as `--help` prints them (the model page allows a scene's defaults to

@@ -69,6 +69,33 @@ void fold_study(const Study& study) {
   write_frames(study.dir + "/fold_frames.dat", grid, run.frames);
 }
 
+// skin.md: the fold of fold.md run again with each skin s of the kept list (ContactModel::skin): how often a step
+// rebuilds, how many candidates the list holds, and what self-collision costs beside one force evaluation.
+void skin_study(const Study& study) {
+  const Grid grid{30, study.quick ? 100 : 200, 0.01};
+  const double T = study.quick ? 1.0 : 1.5, h = 5e-4;
+  MarkdownTable table({"skin s [thickness]", "reach 1 + 2 s [thickness]", "steps that built",
+                       "candidates per particle and step", "passes per step", "self-collision / forces"}, "rrrrrr");
+  for (const double skin : {0.125, 0.25, 0.375, 0.5}) {
+    ContactFlags flags;
+    flags.skin = skin;
+    const BuiltScene b = build_scene(SceneKind::fold, flags, &grid);
+    ContactStepper stepper(make_stepper("symplectic_euler", *b.field), b.model);
+    const SteppedRun run = step_run(stepper, b, h, T, 1);
+    const SelfCollisionWork& work = stepper.self_collision()->work();
+    Vector f(run.x.size());
+    const double forces = best_ms(20, [&] { b.field->forces(run.x, run.v, f); });
+    const auto steps = static_cast<double>(run.steps);
+    table.add_row({format_number(skin, 3), format_number(1 + 2 * skin, 3),
+                   format_fixed(static_cast<double>(work.builds) / steps, 2),
+                   format_fixed(static_cast<double>(work.pairs_found) /
+                                    static_cast<double>(work.builds + work.reuses) / (grid.M * grid.N), 2),
+                   format_fixed(static_cast<double>(work.passes) / steps, 2),
+                   format_fixed(1000 * work.seconds / steps / forces, 2)});
+  }
+  write_table_fragment(study.dir + "/skin.md", table, study.command);
+}
+
 
 // [hash_benchmark]
 void hash_benchmark(const Study& study) {

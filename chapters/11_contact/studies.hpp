@@ -51,7 +51,9 @@ SteppedRun step_run(cloth::Stepper& stepper, const BuiltScene& built, double h, 
 void incline_study(const Study& study);
 void sphere_study(const Study& study);
 void sdirk2_rest_study(const Study& study);
+void sdirk2_stages_study(const Study& study);
 void fold_study(const Study& study);
+void skin_study(const Study& study);
 void hash_benchmark(const Study& study);
 void edge_crossing_study(const Study& study);
 

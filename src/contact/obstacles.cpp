@@ -25,6 +25,8 @@ SurfacePoint surface_point(const Obstacle& obstacle, const Eigen::Vector3d& x) {
 void validate(const ContactModel& model) {
   if (!(std::isfinite(model.thickness) && model.thickness > 0))
     throw InputError("thickness = " + format_number(model.thickness) + ": expected a finite number > 0");
+  if (!(model.skin > 0 && model.skin <= 1))
+    throw InputError("skin = " + format_number(model.skin) + ": expected a fraction of the thickness in (0, 1]");
   const Friction& f = model.friction;
   if (!(std::isfinite(f.mu_s) && f.mu_s >= 0))
     throw InputError("mu_s = " + format_number(f.mu_s) + ": expected a finite number >= 0");

@@ -46,10 +46,12 @@ struct ContactModel {
   Friction friction;
   /// Whether the cloth also collides with itself (contact/self_collision.hpp), with the same thickness.
   bool self_collision = false;
+  /// Self-collision's skin, a fraction of the thickness (SelfCollision).
+  double skin = 0.25;
 };
 
-/// Throws InputError naming the first parameter out of range (thickness > 0, 0 <= mu_k <= mu_s, unit normals,
-/// radius > 0, everything finite).
+/// Throws InputError naming the first parameter out of range (thickness > 0, skin in (0, 1], 0 <= mu_k <= mu_s,
+/// unit normals, radius > 0, everything finite).
 void validate(const ContactModel& model);
 
 /// Corrects the end (x1, v1) of a step that started at x0 for contact with the obstacles, particle by particle

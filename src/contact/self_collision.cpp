@@ -10,9 +10,9 @@ namespace cloth {
 
 // Cells of side 1.5 delta, the largest distance queried: a close pair lies in one cell or in neighbouring ones. About
 // two buckets per particle keep collisions of distinct cells rare (Teschner et al. 2003).
-SelfCollision::SelfCollision(Eigen::VectorXd rest_positions, double thickness)
-    : rest_(std::move(rest_positions)), thickness_(thickness),
-      hash_(1.5 * thickness, std::max(16, static_cast<int>(2 * (rest_.size() / 3)))) {}
+SelfCollision::SelfCollision(Eigen::VectorXd rest_positions, double thickness, double skin)
+    : rest_(std::move(rest_positions)), thickness_(thickness), margin_(skin * thickness),
+      reach_((1 + 2 * skin) * thickness), hash_(reach_, std::max(16, static_cast<int>(2 * (rest_.size() / 3)))) {}
 
 // Pairs nearer than 2 delta at rest are neighbours: at the grid spacing d = delta they are the ends of a
 // structural, shear or flexion spring, which already keeps them apart; parting them too would fight the springs.
@@ -43,7 +43,7 @@ int SelfCollision::clamp(const Eigen::Ref<const Eigen::VectorXd>& x0, double h, 
 // [self_collision_pass]
 void SelfCollision::find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) {
   hash_.build(x, rest_);
-  hash_.pairs_within(1.5 * thickness_, pairs_, 2 * thickness_ * (1 + 1e-9));
+  hash_.pairs_within(reach_, pairs_, 2 * thickness_ * (1 + 1e-9));
   built_at_ = x;
   candidates_current_ = true;
   ++work_.builds;
@@ -59,7 +59,7 @@ void SelfCollision::find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) 
 // whole, or falling, keeps its list longer than the largest displacement alone would allow.
 bool SelfCollision::moved_beyond_margin(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   if (!candidates_current_ || built_at_.size() != x.size()) return true;
-  const double margin2 = thickness_ * thickness_ / 16;
+  const double margin2 = margin_ * margin_;
   Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), high = -low;
   for (Eigen::Index s = 0; s < x.size(); s += 3) {
     const Eigen::Vector3d moved = x.segment<3>(s) - built_at_.segment<3>(s);
@@ -128,7 +128,7 @@ int SelfCollision::resolve_again(Eigen::VectorXd& x, Eigen::VectorXd& v) {
 // [self_collision_pass]
 
 std::vector<std::pair<int, int>> SelfCollision::candidates_brute_force(const Eigen::Ref<const Eigen::VectorXd>& x) const {
-  std::vector<std::pair<int, int>> pairs = pairs_within_brute_force(x, 1.5 * thickness_);
+  std::vector<std::pair<int, int>> pairs = pairs_within_brute_force(x, reach_);
   std::erase_if(pairs, [&](const std::pair<int, int>& p) { return !apart_at_rest(p.first, p.second); });
   return pairs;
 }

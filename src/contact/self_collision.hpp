@@ -28,7 +28,10 @@ struct SelfCollisionWork {
 /// at rest: nearer pairs are grid neighbours (at spacing delta, the ends of a spring), held apart by their springs.
 class SelfCollision {
  public:
-  SelfCollision(Eigen::VectorXd rest_positions, double thickness);
+  /// `skin` is the kept list's skin as a fraction s of delta (the comments below are written for the default,
+  /// 1/4): the hash's reach is (1 + 2 s) delta, and a list is kept while every particle lies within s delta of the
+  /// common motion. Chapter 11 measures the choice (`--skin`).
+  SelfCollision(Eigen::VectorXd rest_positions, double thickness, double skin = 0.25);
 
   /// Shortens the displacement x1 - x0 of each particle to at most delta / 2, and its velocity v1 to at most
   /// delta / (2 h), keeping their directions. Two particles then move at most delta relative to each other in a
@@ -89,6 +92,8 @@ class SelfCollision {
   Eigen::VectorXd built_at_;  // the positions of the last find_candidates
   bool candidates_current_ = false;
   double thickness_;
+  double margin_;  // the skin s delta
+  double reach_;   // the candidates' distance (1 + 2 s) delta
   SpatialHash hash_;
   std::vector<std::pair<int, int>> pairs_;  // reused: a step allocates nothing once it has seen its most pairs
   std::vector<unsigned char> moved_before_, moved_now_;  // per particle: moved by the last pass, by this one

@@ -30,7 +30,7 @@ ContactStepper::ContactStepper(std::unique_ptr<Stepper> inner, ContactModel mode
   // XPBD takes contact inside its substeps, as inequality constraints; the correction after its step then finds
   // nothing left to do but guard the end state.
   if (auto* xpbd = dynamic_cast<Xpbd*>(inner_.get())) xpbd->set_contact(&model_);
-  if (model_.self_collision) self_.emplace(field_.scene().initial_positions(), model_.thickness);
+  if (model_.self_collision) self_.emplace(field_.scene().initial_positions(), model_.thickness, model_.skin);
 }
 
 // [contact_step]
