@@ -1,7 +1,7 @@
 // Chapter 10's study of cloth that moves (see curtain.hpp): each scene's reference motion at every frame and every
 // method of the chapter measured against it (curtain_runs.cpp), the tables (curtain_tables.cpp), implicit Euler's
-// damping of a rigid rotation (rotation.cpp), and in the full run how fast two nearby curtains separate and the same
-// square metre at finer grids.
+// damping of a rigid rotation (rotation.cpp), and in the full run how fast two nearby curtains separate. (The same
+// square metre at finer grids is measured by the map, map_sweep.cpp.)
 #include "curtain.hpp"
 
 #include "curtain_runs.hpp"
@@ -16,33 +16,6 @@ using namespace cloth;
 namespace ch10 {
 
 namespace {
-
-// ---------------------------------------------------------------------------------------------------------------
-// The same square metre at finer grids (full run only).
-
-void ladder(const std::string& out, const std::string& command) {
-  MarkdownTable t({"scene", "grid", "motion over the frames", "reference steps", "method", "h [s]", "CPU time [s]",
-                   "error over the frames"},
-                  "llrrlrrr");
-  std::string dat = "# scene n method h cpu_seconds error_over_frames motion_over_frames status\n";
-  for (const CurtainScene& c : curtain_scenes) {
-    if (c.tag == "corners") continue;
-    for (int n : {20, 40, 80}) {
-      // Beyond 20 x 20 with the quick run's settings (reference at 1e-8) and without full Newton: a finer grid's
-      // runs cost up to (n / 20)^3 times as much.
-      const SceneResult r = measure_scene(c, n, n > 20);
-      for (const CurtainRun& run : r.runs) {
-        t.add_row({c.title, format("%d x %d", n, n), metres(r.motion.over_frames), format("%lld", r.reference.steps),
-                   label(run.method), step_text(run.h), format("%.3g", run.seconds),
-                   run.ok ? metres(run.error.over_frames) : run.message});
-        dat += format("%s %d %s %.6e %.6e %.6e %.6e %s\n", c.tag.c_str(), n, run.method.c_str(), run.h, run.seconds,
-                      run.error.over_frames, r.motion.over_frames, run.ok ? "ok" : "failed");
-      }
-    }
-  }
-  write_table_fragment(out + "/curtain_ladder.md", t, command);
-  write_text(out, "curtain_ladder.dat", dat);
-}
 
 // [sensitivity]
 /// How fast two nearby curtains separate: references at 1e-10 and 1e-12 followed past the horizon, to 1 s.
@@ -92,9 +65,7 @@ OutputList curtain_outputs(bool quick) {
                                {"curtain_flags_" + c.tag + ".md", fragment, c.title + ": the single run's flags"}};
   }
   if (!quick)
-    files = files + OutputList{{"curtain_ladder.md", data, "the same square metre at 20 x 20 to 80 x 80"},
-                               {"curtain_ladder.dat", data, "the runs of curtain_ladder.md"},
-                               {"curtain_sensitivity.md", data, "how fast two nearby curtains separate"},
+    files = files + OutputList{{"curtain_sensitivity.md", data, "how fast two nearby curtains separate"},
                                {"curtain_sensitivity.dat", data, "the distances of curtain_sensitivity.md"}};
   return files;
 }
@@ -115,10 +86,7 @@ void curtain_study(bool quick, const std::string& out, const std::string& comman
   write_text(out, "curtain_motion.dat", motion);
   write_table_fragment(out + "/curtain_levels.md", levels_table(results), command);
   rotation_study(out, command);
-  if (!quick) {
-    sensitivity(out, command);
-    ladder(out, command);
-  }
+  if (!quick) sensitivity(out, command);
 }
 
 }  // namespace ch10

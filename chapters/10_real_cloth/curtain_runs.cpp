@@ -114,7 +114,6 @@ SceneResult measure_scene(const CurtainScene& c, int n, bool quick) {
   r.edge = free_edge_height(scene.grid(), r.reference.frames);
   r.reference_minimum = first_minimum_time(r.t, r.edge);
   for (const MethodRow& m : curtain_methods) {
-    if (n > 20 && !m.finer_grids) continue;
     std::vector<double> steps = m.steps;
     if (quick && steps.size() > m.quick_steps) steps.resize(m.quick_steps);
     if (steps.empty()) {  // a whole number of steps per frame, each below 95 % of the stable step
