@@ -31,7 +31,8 @@ unset arrow 2
 unset label 1
 unset label 2
 
-# 2. The map: the cheapest method per (particles per side, K), at 1 cm and 1 mm, with its predicted CPU time.
+# 2. The map: the cheapest method per (particles per side, K), at 1 cm and 1 mm, with its predicted CPU time; a
+#    level the rest state already meets is marked "met by standing still" in grey, not as a winner.
 set output plots.'/ch10_map.png'
 set terminal pngcairo size 1400,620 enhanced font "Sans,11"
 set multiplot layout 1,2 title "Cheapest method to reach the accuracy at T = 0.5 s (20 x 20 measured, larger grids predicted by the cost model)"
@@ -55,8 +56,10 @@ short(s) = (s eq "symplectic_euler") ? "sympl. Euler" : (s eq "rk4") ? "RK4" : (
            (s eq "local_global") ? "LG 10" : (s eq "local_global/50it") ? "LG 50" : "IE Newton CG"
 do for [tol in "0.01 0.001"] {
   set title (tol eq "0.01" ? "largest position error 1 cm" : "largest position error 1 mm")
-  plot W u ($1 == real(tol) ? $3 : 1/0):2:(sprintf("%s\n%.2g s", short(strcol(5)), $6)):(color(strcol(5))) \
-         w labels font ",11:Bold" tc rgb variable
+  # A level the rest state already meets (winner code -1) is nobody's win: marked in grey italics, not as a method.
+  plot W u ($1 == real(tol) && $4 >= 0 ? $3 : 1/0):2:(sprintf("%s\n%.2g s", short(strcol(5)), $6)):(color(strcol(5))) \
+         w labels font ",11:Bold" tc rgb variable, \
+       W u ($1 == real(tol) && $4 < 0 ? $3 : 1/0):2:("met by\nstanding still") w labels font ",10:Italic" tc rgb 0x888888
 }
 unset multiplot
 
