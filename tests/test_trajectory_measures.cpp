@@ -65,6 +65,28 @@ TEST_CASE("the rule: a level the rest state meets is never a win; below the moti
   CHECK(std::string(accuracy_verdict_name(AccuracyVerdict::met_by_rest)) == "met by standing still");
 }
 
+TEST_CASE("fastest_reaching never counts a level the rest state meets as a win") {
+  // A sheet that moves 6.7 mm by T: its particle 2 sags 6.7 mm. Three runs of it: one exact but slow, one off by
+  // 2 mm and fast, one that failed (NaN) and cost nothing.
+  const std::vector<Frame> reference = {frame(0), frame(0.5, 2, {0, 0, -0.0067})};
+  const double motion = motion_size(reference).at_end;
+  REQUIRE(motion == doctest::Approx(0.0067).epsilon(1e-12));
+  const std::vector<Frame> exact = reference;
+  const std::vector<Frame> off = {frame(0), frame(0.5, 2, {0, 0, -0.0047})};
+  const std::vector<RunCost> runs = {{trajectory_error(exact, reference).at_end, 2.0},
+                                     {trajectory_error(off, reference).at_end, 0.5},
+                                     {NAN, 0.0}};
+  // 1 cm and the motion itself: met by standing still, so no run wins, not even the exact one.
+  CHECK(fastest_reaching(runs, motion, 0.01) == -1);
+  CHECK(fastest_reaching(runs, motion, motion) == -1);
+  // 3 mm: the fast run (error 2 mm) wins; 1 mm: only the exact run reached it; 1e-20 m: nobody's; never the NaN.
+  CHECK(fastest_reaching(runs, motion, 0.003) == 1);
+  CHECK(fastest_reaching(runs, motion, 0.001) == 0);
+  CHECK(fastest_reaching({{0.0, 1.0}, {NAN, 0.0}}, motion, 1e-20) == 0);
+  CHECK(fastest_reaching({{1e-3, 1.0}}, motion, 1e-20) == -1);
+  CHECK(met_by_standing_still(motion) == "met by standing still (the rest state is 0.0067 m from the reference)");
+}
+
 TEST_CASE("largest_strain of a hand-stretched 2 x 2 sheet") {
   SceneParams p;
   p.grid = Grid{2, 2, 0.1};

@@ -60,11 +60,13 @@ Curves error_curves(double K, double T, const std::vector<std::string>& methods,
 }
 // [sweep]
 
-const Measurement* cheapest(const std::vector<Measurement>& rows, const std::string& method, double tol) {
-  const Measurement* best = nullptr;
-  for (const Measurement& m : rows)
-    if (m.method == method && m.ok && m.error <= tol && (best == nullptr || m.seconds < best->seconds)) best = &m;
-  return best;
+const Measurement* cheapest(const Curves& c, const std::string& method, double tol) {
+  std::vector<const Measurement*> runs;
+  std::vector<RunCost> costs;
+  for (const Measurement& m : c.rows)
+    if (m.method == method) runs.push_back(&m), costs.push_back({m.ok ? m.error : NAN, m.seconds});
+  const int best = fastest_reaching(costs, c.displacement, tol);  // none at a level standing still meets
+  return best < 0 ? nullptr : runs[static_cast<std::size_t>(best)];
 }
 
 std::string curves_tag(double K) { return format("K%g", K); }

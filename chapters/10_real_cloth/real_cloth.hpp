@@ -59,7 +59,7 @@ struct Curves {
   double K = 0, T = 0;
   long long reference_steps = 0;
   double reference_agreement = -1;  ///< RK4 against the 3/8 rule, when checked
-  double displacement = 0;          ///< the reference's largest distance of a particle from its rest position at T
+  double displacement = 0;          ///< the size of the motion at T: the rest state's distance from the reference
   std::vector<Measurement> rows;
 };
 
@@ -80,8 +80,9 @@ void print_curves(const Curves& c);
 std::string curves_tag(double K);
 /// Writes the sweep as curves_TAG.dat, one gnuplot block per method.
 void write_curves(const Settings& s, const Curves& c, const std::string& tag);
-/// The cheapest run of `method` whose error at T is below tol (nullptr when none).
-const Measurement* cheapest(const std::vector<Measurement>& rows, const std::string& method, double tol);
+/// The cheapest run of `method` whose error at T is at most tol (nullptr when none, and at every tol the rest
+/// state meets: tol >= c.displacement, where standing still is no win; cloth::fastest_reaching).
+const Measurement* cheapest(const Curves& c, const std::string& method, double tol);
 
 /// The practitioner's question at c.T: each method's cheapest run to 1 cm and 1 mm, and the verdicts
 /// (practitioner_TAG.md and its note, displacement_TAG.md, verdict_TAG_1cm.md, verdict_TAG_1mm.md); the verdicts'

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -99,6 +100,21 @@ const char* accuracy_verdict_name(AccuracyVerdict verdict) {
     case AccuracyVerdict::met_by_rest: return "met by standing still";
   }
   return "?";
+}
+
+std::string met_by_standing_still(double motion) {
+  char text[96];
+  std::snprintf(text, sizeof text, "met by standing still (the rest state is %.3g m from the reference)", motion);
+  return text;
+}
+
+int fastest_reaching(const std::vector<RunCost>& runs, double motion, double level) {
+  int best = -1;
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    if (accuracy_verdict(runs[k].error, motion, level) == AccuracyVerdict::reached &&
+        (best < 0 || runs[k].seconds < runs[static_cast<std::size_t>(best)].seconds))
+      best = static_cast<int>(k);
+  return best;
 }
 
 }  // namespace cloth

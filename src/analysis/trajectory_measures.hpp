@@ -7,6 +7,7 @@
 #include "integrators/simulate.hpp"
 #include "model/scene.hpp"
 
+#include <string>
 #include <vector>
 
 namespace cloth {
@@ -64,5 +65,18 @@ enum class AccuracyVerdict {
 [[nodiscard]] AccuracyVerdict accuracy_verdict(double error, double motion, double level);
 /// "reached", "missed", "met by standing still".
 [[nodiscard]] const char* accuracy_verdict_name(AccuracyVerdict verdict);
+/// What a table or sentence prints for a level the rest state meets, with the size of the motion:
+/// "met by standing still (the rest state is 0.00669 m from the reference)".
+[[nodiscard]] std::string met_by_standing_still(double motion);
+
+/// A run as the choice of the fastest to a level sees it: its error (the same measure as the motion's; NaN or
+/// infinity for a run that failed) and its cost.
+struct RunCost {
+  double error = 0;
+  double seconds = 0;
+};
+/// The index in `runs` of the fastest run whose verdict at `level` is reached, or -1 when none is: in particular
+/// at every level the rest state meets, where no run, however accurate, is a win.
+[[nodiscard]] int fastest_reaching(const std::vector<RunCost>& runs, double motion, double level);
 
 }  // namespace cloth
