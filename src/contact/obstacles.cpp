@@ -119,6 +119,11 @@ int resolve_obstacle_contacts(const ContactModel& model, const std::vector<int>&
   for (const int s : particles) contacts += resolve_particle(model, s, x0, x1, v1);
   return contacts;
 }
+
+int resolve_obstacle_contacts(const ContactModel& model, Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                              Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
+  return resolve_particle(model, s, x0, x1, v1);
+}
 // [obstacle_contact]
 
 int project_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,

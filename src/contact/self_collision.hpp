@@ -5,7 +5,10 @@
 
 #include "contact/spatial_hash.hpp"
 
+#include "contact/obstacles.hpp"
+
 #include <Eigen/Core>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -37,6 +40,14 @@ class SelfCollision {
   int clamp(const Eigen::Ref<const Eigen::VectorXd>& x0, double h, Eigen::Ref<Eigen::VectorXd> x1,
             Eigen::Ref<Eigen::VectorXd> v1) const;
 
+  /// What a step does to every particle before the self-contacts, in one sweep over the particles rather than
+  /// three: the clamp, the obstacle correction (resolve_obstacle_contacts) and, for the margin check of
+  /// update_candidates, the bounding box of the displacements since the last build. Each particle's clamp and
+  /// correction depend on it alone, so the result is that of clamp followed by resolve_obstacle_contacts.
+  /// Returns the particle-obstacle contacts; the particles clamped are counted in work().
+  int clamp_and_correct(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0, double h,
+                        Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1);
+
   /// Builds the hash on x and keeps the candidate pairs: closer than 1.5 delta, and farther than 2 delta apart at
   /// rest (the hash leaves the mesh's neighbours out as it finds them). Particles move little while their contacts
   /// are resolved, so the passes that follow read this list rather than query the hash again.
@@ -60,7 +71,9 @@ class SelfCollision {
   /// The next pass, over the candidates that may have changed since the last: those with a particle that the last
   /// pass moved (listed by moved(), which is all the obstacles' correction between passes may move) or that this
   /// pass moved before reaching them. Every other pair is where the last pass found it, or left it, apart, so the
-  /// result is that of a full pass, for a sweep over one byte per particle rather than the positions.
+  /// result is that of a full pass, in the same order. The pairs to visit are marked in a bit per candidate,
+  /// reached from the moved particles through each particle's list of candidates, and read in order: a pass costs
+  /// the moved particles' pairs, not a sweep over every candidate.
   int resolve_again(Eigen::VectorXd& x, Eigen::VectorXd& v);
 
   /// The particles the last pass moved, each once.
@@ -84,6 +97,10 @@ class SelfCollision {
  private:
   [[nodiscard]] bool apart_at_rest(int a, int b) const;
   void mark_moved(int p);  // flags p in moved_now_ and lists it, once
+  void index_candidates();  // each particle's candidates (pair_start_, pair_index_), after a build
+  void mark_pairs_of(int p, std::size_t after);  // marks p's candidates numbered above `after` in todo_
+  [[nodiscard]] bool box_beyond_margin(const Eigen::Vector3d& low, const Eigen::Vector3d& high,
+                                       const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   Eigen::VectorXd rest_;
   Eigen::VectorXd built_at_;  // the positions of the last find_candidates
@@ -91,8 +108,14 @@ class SelfCollision {
   double thickness_;
   SpatialHash hash_;
   std::vector<std::pair<int, int>> pairs_;  // reused: a step allocates nothing once it has seen its most pairs
-  std::vector<unsigned char> moved_before_, moved_now_;  // per particle: moved by the last pass, by this one
-  std::vector<int> moved_list_;                         // the particles moved_now_ flags
+  std::vector<std::pair<int, int>> checked_;  // the pairs closest_distance looked at
+  std::vector<unsigned char> moved_now_;     // per particle: moved by this pass
+  std::vector<int> moved_list_;              // the particles moved_now_ flags
+  std::vector<int> moved_before_;            // the particles the last pass moved
+  std::vector<int> pair_start_, pair_index_;  // particle p's candidates: pair_index_[pair_start_[p] ...]
+  std::vector<std::uint64_t> todo_;           // one bit per candidate: to be visited by this pass
+  bool box_current_ = false;                  // low_, high_ measured on the positions update_candidates gets
+  Eigen::Vector3d low_, high_;                // the bounding box of the displacements since the last build
   SelfCollisionWork work_;
 };
 
