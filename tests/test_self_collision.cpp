@@ -119,7 +119,7 @@ TEST_CASE("a pass over the pairs with a moved particle ends where a full pass ov
   Eigen::VectorXd x_full = x, v_full = v;
   int passes = 0, passes_full = 0;
   for (int corrected = self.resolve(x, v); corrected > 0 && passes < 30; corrected = self.resolve_again(x, v)) ++passes;
-  while (resolve_self_contacts(pairs, thickness, x_full, v_full, 1e-3) > 0 && passes_full < 30) ++passes_full;
+  while (resolve_self_contacts(pairs, thickness, x_full, v_full, SelfCollision::response_slack) > 0 && passes_full < 30) ++passes_full;
   CHECK(passes > 3);  // the passes after the first have something to do
   CHECK(passes == passes_full);
   CHECK(x == x_full);

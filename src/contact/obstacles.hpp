@@ -72,6 +72,11 @@ int resolve_obstacle_contacts(const ContactModel& model, const std::vector<int>&
                               const Eigen::Ref<const Eigen::VectorXd>& x0, Eigen::Ref<Eigen::VectorXd> x1,
                               Eigen::Ref<Eigen::VectorXd> v1);
 
+/// How far x lies outside every obstacle's shell: the smallest phi(x) - thickness over the obstacles. Where it is
+/// positive the correction leaves the particle alone, and since a signed distance changes no faster than the point
+/// moves (|phi(y) - phi(x)| <= |y - x|), so does it at any point y closer to x than that.
+[[nodiscard]] double clearance(const ContactModel& model, const Eigen::Vector3d& x);
+
 /// The same for particle s alone (a sweep that does more to each particle calls it).
 int resolve_obstacle_contacts(const ContactModel& model, Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0,
                               Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1);

@@ -30,12 +30,19 @@ namespace {
 // Returns whether the displacement was shortened.
 bool clamp_particle(Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0, double h, double reach,
                     Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
+  // Square roots only near the limits: a squared length below 0.98 reach^2 is below it after rounding too.
+  const double near2 = 0.98 * reach * reach;
   const Eigen::Vector3d dx = x1.segment<3>(3 * s) - x0.segment<3>(3 * s);
-  const double length = dx.norm();
-  const bool clamped = length > reach;
-  if (clamped) x1.segment<3>(3 * s) = x0.segment<3>(3 * s) + (reach / length) * dx;
-  const double speed = v1.segment<3>(3 * s).norm();
-  if (speed * h > reach) v1.segment<3>(3 * s) *= reach / (speed * h);
+  bool clamped = false;
+  if (!(dx.squaredNorm() < near2)) {
+    const double length = dx.norm();
+    clamped = length > reach;
+    if (clamped) x1.segment<3>(3 * s) = x0.segment<3>(3 * s) + (reach / length) * dx;
+  }
+  if (!(v1.segment<3>(3 * s).squaredNorm() * (h * h) < near2)) {
+    const double speed = v1.segment<3>(3 * s).norm();
+    if (speed * h > reach) v1.segment<3>(3 * s) *= reach / (speed * h);
+  }
   return clamped;
 }
 
@@ -51,16 +58,38 @@ int SelfCollision::clamp(const Eigen::Ref<const Eigen::VectorXd>& x0, double h, 
 }
 // [clamp]
 
+
+int SelfCollision::correct_moved(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                                 Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) const {
+  int contacts = 0;
+  for (const int p : moved_list_) {
+    const auto s = static_cast<Eigen::Index>(p);
+    const double c = clearance_[static_cast<std::size_t>(p)];
+    // Closer to where the sweep left it than its clearance then: still clear of every obstacle.
+    if ((x1.segment<3>(3 * s) - swept_.segment<3>(3 * s)).squaredNorm() < c * c) continue;
+    contacts += resolve_obstacle_contacts(model, s, x0, x1, v1);
+  }
+  return contacts;
+}
 // [clamp_sweep]
 int SelfCollision::clamp_and_correct(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0, double h,
                                      Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
   const double reach = thickness_ / 2;
   box_current_ = candidates_current_ && built_at_.size() == x1.size();
+  clearance_.resize(static_cast<std::size_t>(x1.size() / 3));
+  swept_.resize(x1.size());
   Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), high = -low;
   int contacts = 0;
   for (Eigen::Index s = 0; s < x1.size() / 3; ++s) {
     work_.clamped += clamp_particle(s, x0, h, reach, x1, v1) ? 1 : 0;
-    contacts += resolve_obstacle_contacts(model, s, x0, x1, v1);
+    // Most particles are clear of every obstacle: a signed distance each, and nothing more.
+    double& c = clearance_[static_cast<std::size_t>(s)];
+    c = clearance(model, x1.segment<3>(3 * s));
+    if (!(c > 0)) {
+      contacts += resolve_obstacle_contacts(model, s, x0, x1, v1);
+      c = 0;
+    }
+    swept_.segment<3>(3 * s) = x1.segment<3>(3 * s);
     if (!box_current_) continue;
     const Eigen::Vector3d moved = x1.segment<3>(3 * s) - built_at_.segment<3>(3 * s);
     low = low.cwiseMin(moved);
@@ -149,7 +178,7 @@ int SelfCollision::resolve(Eigen::VectorXd& x, Eigen::VectorXd& v) {
   ++work_.passes;
   moved_now_.assign(n, 0);
   moved_list_.clear();
-  const double reach = (1 - 1e-3) * thickness_;
+  const double reach = (1 - response_slack) * thickness_;
   int corrected = 0;
   for (const auto& [a, b] : pairs_)
     if (part_pair(a, b, thickness_, reach, x.data(), v.data())) {
@@ -182,7 +211,7 @@ int SelfCollision::resolve_again(Eigen::VectorXd& x, Eigen::VectorXd& v) {
   moved_list_.clear();
   for (const int p : moved_before_) moved_now_[static_cast<std::size_t>(p)] = 0;
   for (const int p : moved_before_) mark_pairs_of(p, 0);
-  const double reach = (1 - 1e-3) * thickness_;
+  const double reach = (1 - response_slack) * thickness_;
   int corrected = 0;
   // The marked pairs in order; a pair that moves a particle for the first time in this pass marks that
   // particle's later pairs, which this pass then reaches.

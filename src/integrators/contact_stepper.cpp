@@ -64,7 +64,7 @@ void ContactStepper::correct_with_self_collision(double h, Vector& x, Vector& v)
   for (int round = 1;; ++round) {
     for (int pass = 0; pass < max_self_passes; ++pass) {
       if ((pass == 0 ? self_->resolve(x, v) : self_->resolve_again(x, v)) == 0) break;
-      resolve_obstacle_contacts(model_, self_->moved(), x0_, x, v);  // the others are as the last correction left them
+      self_->correct_moved(model_, x0_, x, v);  // the others are as the last correction left them
     }
     if (round == max_self_rounds || !self_->moved_beyond_margin(x)) break;
     self_->find_candidates(x);
