@@ -107,7 +107,7 @@ void SelfCollision::find_candidates(const Eigen::Ref<const Eigen::VectorXd>& x) 
   hash_.pairs_within(1.5 * thickness_, pairs_, 2 * thickness_ * (1 + 1e-9));
   built_at_ = x;
   candidates_current_ = true;
-  index_candidates();
+  indexed_ = false;
   ++work_.builds;
   work_.distance_tests += hash_.distance_tests();
   work_.pairs_found += static_cast<long long>(pairs_.size());
@@ -171,6 +171,7 @@ void SelfCollision::index_candidates() {
   std::rotate(pair_start_.begin(), pair_start_.begin() + 1, pair_start_.end());
   pair_start_.back() = static_cast<int>(2 * count);
   todo_.assign((count + 63) / 64, 0);
+  indexed_ = true;
 }
 
 int SelfCollision::resolve(Eigen::VectorXd& x, Eigen::VectorXd& v) {
@@ -207,6 +208,7 @@ void SelfCollision::mark_pairs_of(int p, std::size_t from) {
 
 int SelfCollision::resolve_again(Eigen::VectorXd& x, Eigen::VectorXd& v) {
   ++work_.passes;
+  if (!indexed_) index_candidates();  // once per build, and only for a step that needs a second pass
   std::swap(moved_before_, moved_list_);
   moved_list_.clear();
   for (const int p : moved_before_) moved_now_[static_cast<std::size_t>(p)] = 0;

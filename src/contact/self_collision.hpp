@@ -125,6 +125,7 @@ class SelfCollision {
   std::vector<int> moved_before_;            // the particles the last pass moved
   std::vector<int> pair_start_, pair_index_;  // particle p's candidates: pair_index_[pair_start_[p] ...]
   std::vector<std::uint64_t> todo_;           // one bit per candidate: to be visited by this pass
+  bool indexed_ = false;                      // pair_start_, pair_index_ and todo_ describe the candidates
   bool box_current_ = false;                  // low_, high_ measured on the positions update_candidates gets
   Eigen::Vector3d low_, high_;                // the bounding box of the displacements since the last build
   std::vector<double> clearance_;  // each particle's clearance from the obstacles after clamp_and_correct, 0 in contact
