@@ -2,7 +2,6 @@
 #include "contact/spatial_hash.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -133,15 +132,13 @@ std::pair<std::size_t, std::size_t> SpatialHash::run_of(std::uint64_t col) const
 }
 
 // [hash_window]
-// Entry a against the entries of its windows (at most five: its own column's and four neighbours'), without a
-// branch on the outcome: in a crumpled cloth a large part of the distances tested are close pairs, in an irregular
-// order that defeats a processor's branch prediction, so each entry is written to the end of a scratch list whose
-// end moves past it only when it is kept (both tests, the distance now and the distance at rest, computed for
-// every entry from contiguous arrays). All of a particle's windows are tested in one call: a window holds a few
-// entries, and a call per window cost about as much as its tests.
+// Entry a against the entries [first, last), without a branch on the outcome: in a crumpled cloth a large part of
+// the distances tested are close pairs, in an irregular order that defeats a processor's branch prediction, so
+// each entry is written to the end of a scratch list whose end moves past it only when it is kept (both tests,
+// the distance now and the distance at rest, computed for every entry from contiguous arrays).
 template <bool mesh_aware>
-void SpatialHash::test_windows(std::size_t a, const Window* windows, std::size_t count, double r2, double rest2,
-                               std::vector<std::pair<int, int>>& pairs) {
+void SpatialHash::test_window(std::size_t a, std::size_t first, std::size_t last, double r2, double rest2,
+                              std::vector<std::pair<int, int>>& pairs) {
   const double xa = px_[a], ya = py_[a], za = pz_[a];
   const double* px = px_.data();
   const double* py = py_.data();
@@ -151,25 +148,21 @@ void SpatialHash::test_windows(std::size_t a, const Window* windows, std::size_t
   const double* rz = rz_.data();
   int* close = close_.data();
   std::size_t kept = 0;
-  for (std::size_t w = 0; w < count; ++w) {
-    const auto [first, last] = windows[w];
-    distance_tests_ += static_cast<long long>(last - first);
-    if constexpr (mesh_aware) {
-      const double rxa = rx[a], rya = ry[a], rza = rz[a];
-      for (std::size_t b = first; b < last; ++b) {
-        const double dx = px[b] - xa, dy = py[b] - ya, dz = pz[b] - za;
-        const double ex = rx[b] - rxa, ey = ry[b] - rya, ez = rz[b] - rza;
-        const unsigned keep = static_cast<unsigned>(dx * dx + dy * dy + dz * dz < r2) &
-                              static_cast<unsigned>(ex * ex + ey * ey + ez * ez > rest2);
-        close[kept] = static_cast<int>(b);
-        kept += keep;
-      }
-    } else {
-      for (std::size_t b = first; b < last; ++b) {
-        const double dx = px[b] - xa, dy = py[b] - ya, dz = pz[b] - za;
-        close[kept] = static_cast<int>(b);
-        kept += static_cast<unsigned>(dx * dx + dy * dy + dz * dz < r2);
-      }
+  if constexpr (mesh_aware) {
+    const double rxa = rx[a], rya = ry[a], rza = rz[a];
+    for (std::size_t b = first; b < last; ++b) {
+      const double dx = px[b] - xa, dy = py[b] - ya, dz = pz[b] - za;
+      const double ex = rx[b] - rxa, ey = ry[b] - rya, ez = rz[b] - rza;
+      const unsigned keep = static_cast<unsigned>(dx * dx + dy * dy + dz * dz < r2) &
+                            static_cast<unsigned>(ex * ex + ey * ey + ez * ez > rest2);
+      close[kept] = static_cast<int>(b);
+      kept += keep;
+    }
+  } else {
+    for (std::size_t b = first; b < last; ++b) {
+      const double dx = px[b] - xa, dy = py[b] - ya, dz = pz[b] - za;
+      close[kept] = static_cast<int>(b);
+      kept += static_cast<unsigned>(dx * dx + dy * dy + dz * dz < r2);
     }
   }
   const int pa = particle_[a];
@@ -184,45 +177,39 @@ void SpatialHash::test_windows(std::size_t a, const Window* windows, std::size_t
 void SpatialHash::pairs_within(double r, std::vector<std::pair<int, int>>& pairs, double apart_at_rest) {
   pairs.clear();
   distance_tests_ = 0;
-  if (has_rest_ && apart_at_rest > 0) query<true>(r * r, apart_at_rest * apart_at_rest, pairs);
-  else query<false>(r * r, 0, pairs);
-}
-
-template <bool mesh_aware>
-void SpatialHash::query(double r2, double rest2, std::vector<std::pair<int, int>>& pairs) {
+  const double r2 = r * r, rest2 = apart_at_rest * apart_at_rest;
+  const bool mesh_aware = has_rest_ && apart_at_rest > 0;
+  const auto test = [&](std::size_t a, std::size_t first, std::size_t last) {
+    distance_tests_ += static_cast<long long>(last - first);
+    if (mesh_aware) test_window<true>(a, first, last, r2, rest2, pairs);
+    else test_window<false>(a, first, last, r2, rest2, pairs);
+  };
   const std::size_t n = keys_.size();
   for (std::size_t s = 0, e = 0; s < n; s = e) {
-    // The run [s, e) of one occupied column, ordered upwards, and the runs of the four neighbouring columns that
-    // come after it in the order (di, dj), (0, 1), (1, -1), (1, 0), (1, 1): the other four find the same pairs
-    // from the other column.
+    // The run [s, e) of one occupied column, ordered upwards. Its own pairs: each entry with those after it at
+    // most 4 slices higher.
     const std::uint64_t col = column(keys_[s]);
     for (e = s + 1; e < n && column(keys_[e]) == col; ++e) {}
+    for (std::size_t a = s, last = s; a < e; ++a) {
+      last = std::max(last, a + 1);
+      while (last < e && height(keys_[last]) <= height(keys_[a]) + slices) ++last;
+      test(a, a + 1, last);
+    }
+    // Its pairs with the four neighbouring columns that come after it in the order (di, dj), (0, 1), (1, -1),
+    // (1, 0), (1, 1): the other four find the same pairs from the other column. Both columns go upwards, so
+    // the window of slices k - 4 .. k + 4 beside entry a only moves up as a does.
     const std::uint64_t i = col >> key_bits, j = col & key_mask;
-    std::array<Window, 4> runs{};
-    std::size_t count = 0;
     for (const auto& [di, dj] : {std::pair{0, 1}, std::pair{1, -1}, std::pair{1, 0}, std::pair{1, 1}}) {
       const std::uint64_t ni = i + static_cast<std::uint64_t>(di), nj = j + static_cast<std::uint64_t>(dj);
       if (ni > key_mask || nj > key_mask) continue;  // beyond the clamped range (j - 1 of j = 0 wraps to 2^64 - 1)
-      const Window run = run_of(ni << key_bits | nj);
-      if (run.first < run.second) runs[count++] = run;
-    }
-    // Each entry a with those after it in its own column at most 4 slices higher, and with the entries of each
-    // neighbouring run within 4 slices of its height. All runs go upwards, so every window only moves up as a does.
-    std::array<Window, 5> windows{};
-    std::array<std::size_t, 4> lo{}, hi{};
-    for (std::size_t c = 0; c < count; ++c) lo[c] = hi[c] = runs[c].first;
-    for (std::size_t a = s, last = s; a < e; ++a) {
-      const std::uint64_t k = height(keys_[a]);
-      last = std::max(last, a + 1);
-      while (last < e && height(keys_[last]) <= k + slices) ++last;
-      windows[0] = {a + 1, last};
-      for (std::size_t c = 0; c < count; ++c) {
-        while (lo[c] < runs[c].second && height(keys_[lo[c]]) + slices < k) ++lo[c];
-        hi[c] = std::max(hi[c], lo[c]);
-        while (hi[c] < runs[c].second && height(keys_[hi[c]]) <= k + slices) ++hi[c];
-        windows[c + 1] = {lo[c], hi[c]};
+      const auto [first, last] = run_of(ni << key_bits | nj);
+      for (std::size_t a = s, lo = first, hi = first; a < e; ++a) {
+        const std::uint64_t k = height(keys_[a]);
+        while (lo < last && height(keys_[lo]) + slices < k) ++lo;
+        hi = std::max(hi, lo);
+        while (hi < last && height(keys_[hi]) <= k + slices) ++hi;
+        test(a, lo, hi);
       }
-      test_windows<mesh_aware>(a, windows.data(), count + 1, r2, rest2, pairs);
     }
   }
 }

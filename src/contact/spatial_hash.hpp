@@ -52,12 +52,9 @@ class SpatialHash {
   /// The run [first, last) of the entries that lie in the column `column`; empty when none do.
   [[nodiscard]] std::pair<std::size_t, std::size_t> run_of(std::uint64_t column) const;
   void sort_buckets();
-  using Window = std::pair<std::size_t, std::size_t>;  // entries [first, last) of the sorted array
   template <bool mesh_aware>
-  void query(double r2, double rest2, std::vector<std::pair<int, int>>& pairs);
-  template <bool mesh_aware>
-  void test_windows(std::size_t a, const Window* windows, std::size_t count, double r2, double rest2,
-                    std::vector<std::pair<int, int>>& pairs);
+  void test_window(std::size_t a, std::size_t first, std::size_t last, double r2, double rest2,
+                   std::vector<std::pair<int, int>>& pairs);
   void gather(const Eigen::Ref<const Eigen::VectorXd>& x);
 
   double cell_;
