@@ -26,6 +26,7 @@ bool SelfCollision::apart_at_rest(int a, int b) const {
 
 namespace {
 
+// [clamp]
 // The clamp of one particle s: its displacement x1 - x0 shortened to at most `reach`, and its velocity to reach / h.
 // Returns whether the displacement was shortened.
 bool clamp_particle(Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0, double h, double reach,
@@ -45,10 +46,10 @@ bool clamp_particle(Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0,
   }
   return clamped;
 }
+// [clamp]
 
 }  // namespace
 
-// [clamp]
 int SelfCollision::clamp(const Eigen::Ref<const Eigen::VectorXd>& x0, double h, Eigen::Ref<Eigen::VectorXd> x1,
                          Eigen::Ref<Eigen::VectorXd> v1) const {
   const double reach = thickness_ / 2;  // per particle and step: two approaching particles close at most delta
@@ -56,7 +57,6 @@ int SelfCollision::clamp(const Eigen::Ref<const Eigen::VectorXd>& x0, double h, 
   for (Eigen::Index s = 0; s < x1.size() / 3; ++s) clamped += clamp_particle(s, x0, h, reach, x1, v1) ? 1 : 0;
   return clamped;
 }
-// [clamp]
 
 
 int SelfCollision::correct_moved(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
