@@ -136,7 +136,7 @@ int resolve_obstacle_contacts(const ContactModel& model, const std::vector<int>&
 }
 
 int resolve_obstacle_contacts(const ContactModel& model, Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0,
-                              Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
+                              Eigen::Ref<Eigen::VectorXd>& x1, Eigen::Ref<Eigen::VectorXd>& v1) {
   return resolve_particle(model, s, x0, x1, v1);
 }
 // [obstacle_contact]

@@ -77,9 +77,9 @@ int resolve_obstacle_contacts(const ContactModel& model, const std::vector<int>&
 /// moves (|phi(y) - phi(x)| <= |y - x|), so does it at any point y closer to x than that.
 [[nodiscard]] double clearance(const ContactModel& model, const Eigen::Vector3d& x);
 
-/// The same for particle s alone (a sweep that does more to each particle calls it).
+/// The same for particle s alone (a sweep that does more to each particle calls it with the views it holds).
 int resolve_obstacle_contacts(const ContactModel& model, Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0,
-                              Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1);
+                              Eigen::Ref<Eigen::VectorXd>& x1, Eigen::Ref<Eigen::VectorXd>& v1);
 
 /// The displacement rule of resolve_obstacle_contacts alone, for methods whose velocities follow from their
 /// positions (XPBD: v = (x1 - x0) / h): the contacts as inequality constraints phi(x) >= thickness, projected,

@@ -30,7 +30,7 @@ namespace {
 // The clamp of one particle s: its displacement x1 - x0 shortened to at most `reach`, and its velocity to reach / h.
 // Returns whether the displacement was shortened.
 bool clamp_particle(Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0, double h, double reach,
-                    Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
+                    Eigen::Ref<Eigen::VectorXd>& x1, Eigen::Ref<Eigen::VectorXd>& v1) {
   // Square roots only near the limits: a squared length below 0.98 reach^2 is below it after rounding too.
   const double near2 = 0.98 * reach * reach;
   const Eigen::Vector3d dx = x1.segment<3>(3 * s) - x0.segment<3>(3 * s);

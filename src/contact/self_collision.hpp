@@ -108,8 +108,8 @@ class SelfCollision {
  private:
   [[nodiscard]] bool apart_at_rest(int a, int b) const;
   void mark_moved(int p);  // flags p in moved_now_ and lists it, once
-  void index_candidates();  // each particle's candidates (pair_start_, pair_index_), after a build
-  void mark_pairs_of(int p, std::size_t after);  // marks p's candidates numbered above `after` in todo_
+  void index_candidates();  // each particle's candidates (pair_start_, pair_index_), once per build
+  void mark_pairs_of(int p, std::size_t from);  // marks p's candidates numbered from `from` on in todo_
   [[nodiscard]] bool box_beyond_margin(const Eigen::Vector3d& low, const Eigen::Vector3d& high,
                                        const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
