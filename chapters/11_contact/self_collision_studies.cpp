@@ -56,7 +56,8 @@ void fold_study(const Study& study) {
   const double forces = best_ms(20, [&] { b.field->forces(run.x, run.v, f); });
   MarkdownTable table({"strip", "steps", "closest pair (rest > 2 thickness) after any step [% of thickness]",
                        "deepest in the ground [% of thickness]", "passes per step", "pairs parted per step",
-                       "particles clamped", "hash builds per step", "self-collision / forces"}, "lrrrrrrrr");
+                       "particles clamped", "hash builds per step", "distances tested per build and particle",
+                       "self-collision / forces"}, "lrrrrrrrrr");
   const auto steps = static_cast<double>(run.steps);
   table.add_row({std::to_string(grid.M) + " x " + std::to_string(grid.N), std::to_string(run.steps),
                  format_fixed(100 * closest / b.model.thickness, 2),
@@ -64,6 +65,8 @@ void fold_study(const Study& study) {
                  format_fixed(static_cast<double>(work.passes) / steps, 2),
                  format_fixed(static_cast<double>(work.pairs_corrected) / steps, 1), std::to_string(work.clamped),
                  format_fixed(static_cast<double>(work.builds) / steps, 2),
+                 format_fixed(static_cast<double>(work.distance_tests) / static_cast<double>(work.builds) /
+                                  static_cast<double>(grid.M * grid.N), 1),
                  format_fixed(1000 * work.seconds / steps / forces, 2)});
   write_table_fragment(study.dir + "/fold.md", table, study.command);
   write_frames(study.dir + "/fold_frames.dat", grid, run.frames);

@@ -22,6 +22,21 @@ SurfacePoint surface_point(const Obstacle& obstacle, const Eigen::Vector3d& x) {
   return {distance - sphere.radius, n};
 }
 
+double clearance(const ContactModel& model, const Eigen::Vector3d& x) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Obstacle& obstacle : model.obstacles) {
+    double phi = 0;
+    if (const auto* plane = std::get_if<HalfSpace>(&obstacle)) {
+      phi = plane->normal.dot(x - plane->point);
+    } else {
+      const auto& sphere = std::get<Sphere>(obstacle);
+      phi = (x - sphere.center).norm() - sphere.radius;
+    }
+    nearest = std::min(nearest, phi - model.thickness);
+  }
+  return nearest;
+}
+
 void validate(const ContactModel& model) {
   if (!(std::isfinite(model.thickness) && model.thickness > 0))
     throw InputError("thickness = " + format_number(model.thickness) + ": expected a finite number > 0");
@@ -120,6 +135,11 @@ int resolve_obstacle_contacts(const ContactModel& model, const std::vector<int>&
   int contacts = 0;
   for (const int s : particles) contacts += resolve_particle(model, s, x0, x1, v1);
   return contacts;
+}
+
+int resolve_obstacle_contacts(const ContactModel& model, Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                              Eigen::Ref<Eigen::VectorXd>& x1, Eigen::Ref<Eigen::VectorXd>& v1) {
+  return resolve_particle(model, s, x0, x1, v1);
 }
 // [obstacle_contact]
 

@@ -74,6 +74,15 @@ int resolve_obstacle_contacts(const ContactModel& model, const std::vector<int>&
                               const Eigen::Ref<const Eigen::VectorXd>& x0, Eigen::Ref<Eigen::VectorXd> x1,
                               Eigen::Ref<Eigen::VectorXd> v1);
 
+/// How far x lies outside every obstacle's shell: the smallest phi(x) - thickness over the obstacles. Where it is
+/// positive the correction leaves the particle alone, and since a signed distance changes no faster than the point
+/// moves (|phi(y) - phi(x)| <= |y - x|), so does it at any point y closer to x than that.
+[[nodiscard]] double clearance(const ContactModel& model, const Eigen::Vector3d& x);
+
+/// The same for particle s alone (a sweep that does more to each particle calls it with the views it holds).
+int resolve_obstacle_contacts(const ContactModel& model, Eigen::Index s, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                              Eigen::Ref<Eigen::VectorXd>& x1, Eigen::Ref<Eigen::VectorXd>& v1);
+
 /// The displacement rule of resolve_obstacle_contacts alone, for methods whose velocities follow from their
 /// positions (XPBD: v = (x1 - x0) / h): the contacts as inequality constraints phi(x) >= thickness, projected,
 /// with the cone applied to the displacement (Macklin et al. 2014's position-level friction).

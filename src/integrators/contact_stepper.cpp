@@ -54,8 +54,8 @@ void ContactStepper::correct_with_self_collision(double h, Vector& x, Vector& v)
   // Processor time, not the wall clock: other processes on the machine do not count (the stepping loop runs on one
   // thread, so the process's clock is the thread's).
   const std::clock_t start = std::clock();
-  self_->count_clamped(self_->clamp(x0_, h, x, v));
-  last_contacts_ = resolve_obstacle_contacts(model_, x0_, x, v);
+  // The clamp, the obstacles and the margin's measure, in one sweep over the particles.
+  last_contacts_ = self_->clamp_and_correct(model_, x0_, h, x, v);
   // The candidates of the last build while no particle moved a quarter thickness since; parting a pair may push a
   // particle into the ground or towards a third one: alternate until nothing moves. The passes move particles
   // too, so the list is checked again after them: when they carried a particle beyond the margin, the hash is
@@ -64,7 +64,7 @@ void ContactStepper::correct_with_self_collision(double h, Vector& x, Vector& v)
   for (int round = 1;; ++round) {
     for (int pass = 0; pass < max_self_passes; ++pass) {
       if ((pass == 0 ? self_->resolve(x, v) : self_->resolve_again(x, v)) == 0) break;
-      resolve_obstacle_contacts(model_, self_->moved(), x0_, x, v);  // the others are as the last correction left them
+      self_->correct_moved(model_, x0_, x, v);  // the others are as the last correction left them
     }
     if (round == max_self_rounds || !self_->moved_beyond_margin(x)) break;
     self_->find_candidates(x);
