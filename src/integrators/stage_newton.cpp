@@ -149,6 +149,11 @@ bool StageNewton::refresh(const Vector& V, double gamma, StiffnessTreatment trea
     case LinearSolverKind::ldu:
       ++counters_.factorizations;
       if (!block_.factorize(A_)) failure = "a pivot block is singular";
+      // The exact Hessian of Phi is indefinite where compressed springs' negative transverse stiffness
+      // outweighs the inertia M (Chapter 10 counts how often Newton meets it).
+      else if (treatment != StiffnessTreatment::definite && settings_.solver == LinearSolverKind::ldlt &&
+               !block_.positive_definite())
+        ++counters_.indefinite_factorizations;
       break;
     case LinearSolverKind::lu:
       lu_.factorize(A_);
