@@ -1,6 +1,7 @@
 // The implicit stage as the minimisation of the incremental potential (Chapter 4): Phi's gradient is the stage
 // residual, Newton with the backtracking search on Phi decreases it at every iteration and takes the frame step
 // from the flat curtain that the residual search cannot, and freezing the dampers changes the motion by O(h).
+#include "integrators/block_ldu.hpp"
 #include "integrators/implicit_euler.hpp"
 #include "integrators/method_registry.hpp"
 #include "integrators/simulate.hpp"
@@ -8,6 +9,8 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -198,4 +201,109 @@ TEST_CASE("freezing the dampers at the free-flight position changes the motion b
     INFO("sdirk2, h = " << sdirk2_steps[k] << ": error " << error[k] << " m, order " << order);
     CHECK(order > 1.8);
   }
+}
+
+namespace {
+
+// Chapter 10's fabric curtain at 20 x 20 and K = 1e6 (the map's part curtain_20_1e6): 0.95 m square, 0.25 kg/m^2,
+// flexion springs as stiff as the others, hung by one edge and released flat.
+SceneParams stiff_fabric_curtain() {
+  SceneParams p = curtain();
+  p.grid.d = 0.05;
+  p.mass = 0.25 * p.grid.d * p.grid.d;
+  p.stiffness = 1e6;
+  return p;
+}
+
+// The largest transverse stiffness |T| / l that a compressed spring of state x (free slots) contributes to -df/dx
+// with a negative sign: the term the definite matrix drops.
+double largest_compressed_transverse_stiffness(const Scene& scene, const Vector& x) {
+  Vector all = scene.rest_positions();
+  all.head(x.size()) = x;
+  double largest = 0;
+  for (int f = 0; f < 3; ++f) {
+    const SpringRange range = scene.springs().family[static_cast<std::size_t>(f)];
+    for (int i = range.begin; i < range.end; ++i) {
+      const Spring& s = scene.springs().springs[static_cast<std::size_t>(i)];
+      const double l = (all.segment<3>(3 * s.p) - all.segment<3>(3 * s.q)).norm();
+      if (l < s.rest_length)
+        largest = std::max(largest, scene.stiffness(static_cast<SpringFamily>(f)) * (s.rest_length - l) / l);
+    }
+  }
+  return largest;
+}
+
+}  // namespace
+
+TEST_CASE("definite Newton descends on Phi but contracts only linearly where compressed springs outweigh M / h^2") {
+  const Scene scene(stiff_fabric_curtain());
+  ForceField field(scene);
+  const double h = 1.0 / 30, m = scene.params().mass;
+  const Vector x0 = scene.initial_positions(), v0 = scene.initial_velocities();
+  NewtonSettings exact;
+  exact.tolerance = 1e-6;
+  ImplicitEuler exact_step(field, exact);
+  Vector x = x0, v = v0;
+  REQUIRE(exact_step.step(h, x, v));
+  const std::vector<double>& exact_updates = exact_step.newton().update_history();
+  REQUIRE(exact_updates.size() >= 3);
+  // Exact Newton ends quadratically: its last update is far below the one before.
+  CHECK(exact_updates.back() < 0.1 * exact_updates[exact_updates.size() - 2]);
+  // At the stage solution compressed springs carry a negative transverse stiffness many times the inertia m / h^2
+  // (about 70 times here): the definite matrix, which drops it, overestimates the Hessian in those directions.
+  const double dropped = largest_compressed_transverse_stiffness(scene, x);
+  INFO("largest compressed |T|/l " << dropped << " N/m against m/h^2 = " << m / (h * h) << " N/m");
+  CHECK(dropped > 10 * m / (h * h));
+
+  // Halfway to the solution the definite update is a descent direction of the Phi the search uses: its slope
+  // along dv by central differences is r . dv < 0 (the frozen dampers make damping a gradient).
+  StepCounters counters;
+  StageNewton newton(field, exact, counters);
+  const Vector V = 0.5 * v;
+  const double phi = newton.potential(x0, v0, h, V);  // also freezes the dampers at x0 + h v0
+  REQUIRE(std::isfinite(phi));
+  const Vector r = frozen_residual(field, x0, v0, h, V);
+  SparseMatrix A = field.pattern();
+  field.frozen_newton_matrix(x0 + h * V, h, StiffnessTreatment::definite, A);
+  const Eigen::SimplicialLDLT<SparseMatrix> ldlt(A);
+  REQUIRE(ldlt.info() == Eigen::Success);
+  const Vector dv = ldlt.solve(-r);
+  // The block LDL^T's inertia test against dense eigenvalues, for the definite matrix and the exact one here.
+  for (StiffnessTreatment treatment : {StiffnessTreatment::definite, StiffnessTreatment::exact}) {
+    SparseMatrix B = field.pattern();
+    field.frozen_newton_matrix(x0 + h * V, h, treatment, B);
+    BlockLDU block;
+    block.analyze(B, BlockLDU::Symmetry::symmetric);
+    REQUIRE(block.factorize(B));
+    const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(B), Eigen::EigenvaluesOnly)
+                              .eigenvalues()
+                              .minCoeff();
+    INFO((treatment == StiffnessTreatment::definite ? "definite" : "exact") << ": lowest eigenvalue " << lowest);
+    CHECK(block.positive_definite() == (lowest > 0));
+  }
+  const double eps = 1e-7 / dv.lpNorm<Eigen::Infinity>();
+  const double slope = (newton.potential(x0, v0, h, V + eps * dv) - newton.potential(x0, v0, h, V - eps * dv)) /
+                       (2 * eps);
+  INFO("slope of Phi along the definite update: " << slope << ", r . dv " << r.dot(dv));
+  CHECK(r.dot(dv) < 0);
+  CHECK(slope == doctest::Approx(r.dot(dv)).epsilon(1e-4));
+
+  // So the definite iteration takes its full updates and still converges only linearly, at a rate near 1.
+  NewtonSettings definite = exact;
+  definite.treatment = StiffnessTreatment::definite;
+  ImplicitEuler definite_step(field, definite);
+  Vector xd = x0, vd = v0;
+  REQUIRE(definite_step.step(h, xd, vd));
+  const std::vector<double>& updates = definite_step.newton().update_history();
+  const std::vector<double>& fractions = definite_step.newton().step_fractions();
+  REQUIRE(updates.size() > exact_updates.size() + 10);
+  for (std::size_t k = updates.size() - 10; k < updates.size(); ++k) {
+    INFO("definite iteration " << k << ": fraction " << fractions[k] << ", |dv| " << updates[k - 1] << " -> "
+                               << updates[k]);
+    CHECK(fractions[k] == 1.0);
+    CHECK(updates[k] / updates[k - 1] > 0.6);
+    CHECK(updates[k] / updates[k - 1] < 0.95);
+  }
+  // Both converged to the same stage solution, within the tolerance's reach.
+  CHECK((vd - v).lpNorm<Eigen::Infinity>() < 1e-4);
 }

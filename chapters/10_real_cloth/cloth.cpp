@@ -26,8 +26,13 @@ namespace {
 // run.txt's lines of the method's settings, and the stretch it let through at the recorded states.
 KeyValues run_lines(const Stepper& stepper, const RunResult& result) {
   KeyValues lines;
-  if (const auto* implicit = dynamic_cast<const NewtonStepper*>(&stepper))
+  if (const auto* implicit = dynamic_cast<const NewtonStepper*>(&stepper)) {
     lines = newton_run_lines(implicit->settings());
+    // Where Newton's work goes on a frame step (the robust implicit step's section): halved updates, and
+    // factorizations of an exact Newton matrix that was indefinite.
+    lines.emplace_back("line_search_halvings", std::to_string(result.counters.line_search_halvings));
+    lines.emplace_back("indefinite_factorizations", std::to_string(result.counters.indefinite_factorizations));
+  }
   for (const auto& line : IterationFlags::run_lines(stepper)) lines.push_back(line);
   double strain = -1;
   for (const Frame& f : result.frames)

@@ -125,6 +125,12 @@ double BlockLDU::factorization_flops() const {
 }
 
 // [block_ldu_factorize]
+bool BlockLDU::positive_definite() const {
+  return factored_ && std::all_of(D_.begin(), D_.end(), [](const Block& D) {
+           return D(0, 0) > 0 && D(0, 0) * D(1, 1) - D(1, 0) * D(0, 1) > 0 && D.determinant() > 0;
+         });
+}
+
 bool BlockLDU::factorize(const SparseMatrix& A) {
   eigen_assert(A.rows() == rows_ && A.nonZeros() == nonzeros_ && A.isCompressed());
   factored_ = false;

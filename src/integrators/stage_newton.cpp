@@ -72,6 +72,7 @@ StageNewton::StageNewton(ForceField& field, NewtonSettings settings, StepCounter
   residuals_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 2);
   potentials_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 2);
   fractions_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 2);
+  updates_.reserve(static_cast<std::size_t>(settings_.max_iterations) + 2);
   // The pattern never changes, so the fill-reducing ordering and the symbolic factorization are done once.
   if (settings_.solver == LinearSolverKind::ldlt) block_.analyze(A_, BlockLDU::Symmetry::symmetric);
   if (settings_.solver == LinearSolverKind::ldu) block_.analyze(A_, BlockLDU::Symmetry::general);
@@ -148,6 +149,11 @@ bool StageNewton::refresh(const Vector& V, double gamma, StiffnessTreatment trea
     case LinearSolverKind::ldu:
       ++counters_.factorizations;
       if (!block_.factorize(A_)) failure = "a pivot block is singular";
+      // The exact Hessian of Phi is indefinite where compressed springs' negative transverse stiffness
+      // outweighs the inertia M (Chapter 10 counts how often Newton meets it).
+      else if (treatment != StiffnessTreatment::definite && settings_.solver == LinearSolverKind::ldlt &&
+               !block_.positive_definite())
+        ++counters_.indefinite_factorizations;
       break;
     case LinearSolverKind::lu:
       lu_.factorize(A_);
@@ -273,6 +279,7 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
   residuals_.clear();
   potentials_.clear();
   fractions_.clear();
+  updates_.clear();
   // The dissipation potential's dampers are frozen for the whole solve: only then is damping a gradient, and Phi
   // a function to minimise. They point as at x~ + gamma v~, where the stage's particles would be if no force
   // acted during it: that position is O(h^2) from the stage's, so the frozen damper changes the stage by
@@ -415,6 +422,7 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
       residuals_.push_back(residual);
       if (minimising) potentials_.push_back(phi_);
       fractions_.push_back(0.0);
+      updates_.push_back(dv_.lpNorm<Eigen::Infinity>());
       stale = evaluate = true;
       continue;
     }
@@ -456,6 +464,7 @@ bool StageNewton::solve(const Vector& x_tilde, const Vector& v_tilde, double gam
     residuals_.push_back(residual);
     if (minimising) potentials_.push_back(phi_);
     fractions_.push_back(step_fraction);
+    updates_.push_back(dv_.lpNorm<Eigen::Infinity>());
     previous_update = update;
     update = step_fraction * dv_.lpNorm<Eigen::Infinity>();
     // A kept matrix that contracts slowly costs more iterations than a new factorization (SUNDIALS' crdown), and

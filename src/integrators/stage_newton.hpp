@@ -147,6 +147,8 @@ class StageNewton {
   /// only the fractions.
   [[nodiscard]] const std::vector<double>& potential_history() const { return potentials_; }
   [[nodiscard]] const std::vector<double>& step_fractions() const { return fractions_; }
+  /// |dv|_inf of each Newton update of the last solve, before its line search scaled it.
+  [[nodiscard]] const std::vector<double>& update_history() const { return updates_; }
   /// Phi at V for the stage (x~, v~, gamma), with the dampers frozen at x~ + gamma v~ (Chapter 4's tests and
   /// page); not during a solve, whose frozen dampers it replaces.
   double potential(const Vector& x_tilde, const Vector& v_tilde, double gamma, const Vector& V);
@@ -189,7 +191,7 @@ class StageNewton {
   BlockJacobiPCG cg_;
   Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu_;
   Vector x1_, f_, r_, dv_, warm_dv_;
-  std::vector<double> residuals_, potentials_, fractions_;
+  std::vector<double> residuals_, potentials_, fractions_, updates_;
   double phi_ = 0, phi_resolution_ = 0;
   Timing timing_;
   // Modified Newton: whether A_ holds a usable factorization, for which gamma, and how many steps ago.

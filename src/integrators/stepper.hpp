@@ -23,6 +23,8 @@ struct StepCounters {
   long long definite_fallbacks = 0;   ///< Newton iterations whose exact matrix was singular (a zero pivot), or,
                                       ///< minimising, whose exact update did not descend: solved again with the
                                       ///< definite matrix
+  long long indefinite_factorizations = 0;  ///< LDL^T factorizations of an exact or symmetric Newton matrix
+                                            ///< that was not positive definite (BlockLDU::positive_definite)
 };
 
 /// What stopped a step. run.txt's status names the kind (`step_failed newton_not_converged ...`, the model page's
