@@ -2,6 +2,7 @@
 // independent implementation of the same model), and the map's rules read from hand-made parts: the fastest run
 // that reached a level, the prediction from a ladder's last two rungs, and a level the rest state meets.
 #include "../chapters/06_speed_vs_error/plain_fabric.hpp"
+#include "map_part_file.hpp"
 #include "program_runner.hpp"
 
 #include "model/force_field.hpp"
@@ -90,13 +91,6 @@ TEST_CASE("the plain fabric's accelerations and definite Jacobian are the book's
 }
 
 #ifdef CLOTH_HAVE_CH10_MAP
-namespace {
-void write_part(const cloth_test::fs::path& file, const std::string& part, double motion, const std::string& rows) {
-  std::ofstream out(file);
-  out << "# part " << part << " T 0.6 motion_over_frames " << motion << "\n# side program forces setting steps seconds "
-      << "error_at_T error_over_frames status\n" << rows;
-}
-}  // namespace
 
 TEST_CASE("the map's tables: the fastest run that reached a level, a prediction from the last two rungs, and a "
           "level the rest state meets") {
@@ -104,17 +98,17 @@ TEST_CASE("the map's tables: the fastest run that reached a level, a prediction 
   // The curtain: motion 1.5 m, so plausible is 7.5 cm, which symplectic Euler reaches (2 cm in 0.2 s) and 1 cm
   // not. rk4 reaches 1 mm in 0.5 s; the peer 1 cm in 0.2 s and then 3 mm in 0.8 s: its 1 mm time from
   // error ~ seconds^-q, q = log(10/3) / log(4), is 0.8 (3)^(1/q) s.
-  write_part(dir.path() / "map_curtain_20_1e5.dat", "curtain_20_1e5", 1.5,
+  cloth_test::write_map_part(dir.path() / "map_curtain_20_1e5.dat", "curtain_20_1e5", 0.6, 1.5,
              "book rk4 book \"h = 1/2760\" 1656 5e-01 1e-4 5e-04 ok\n"
              "book symplectic_euler book \"h = 1/3900\" 2340 2e-01 1e-3 2e-02 ok\n"
              "peer cvode_bdf plain \"tol = 0.1\" 100 2e-01 1e-3 1e-02 ok\n"
              "peer cvode_bdf plain \"tol = 0.01\" 400 8e-01 1e-3 3e-03 ok\n");
   // The swing scene with a motion of 8 mm: 1 cm is met by standing still.
-  write_part(dir.path() / "map_swing_20_1e5.dat", "swing_20_1e5", 0.008,
+  cloth_test::write_map_part(dir.path() / "map_swing_20_1e5.dat", "swing_20_1e5", 0.6, 0.008,
              "book rk4 book \"h = 1/2760\" 1656 5e-01 1e-4 5e-05 ok\n");
   // A ladder whose last rung failed (its errors written as nan) predicts nothing, though its first two rungs
   // converge: the failed row is read, and only a ladder's last two rungs may extrapolate.
-  write_part(dir.path() / "map_curtain_40_1e5.dat", "curtain_40_1e5", 1.5,
+  cloth_test::write_map_part(dir.path() / "map_curtain_40_1e5.dat", "curtain_40_1e5", 0.6, 1.5,
              "book implicit_euler/one/cg book \"h = 1/30\" 18 1e-01 5e-2 5e-02 ok\n"
              "book implicit_euler/one/cg book \"h = 1/60\" 36 2e-01 2e-2 2e-02 ok\n"
              "book implicit_euler/one/cg book \"h = 1/120\" 3 4e-01 nan nan failed\n");

@@ -1,6 +1,7 @@
 // Chapter 10's map: the cost model that predicts a part not measured from the two largest measured grids below it
 // (chapters/10_real_cloth/map_predict.cpp), read from the tables `ch10_map --tables` writes for a made-up pair of
 // parts whose growth per doubling is known.
+#include "map_part_file.hpp"
 #include "program_runner.hpp"
 
 #include <doctest/doctest.h>
@@ -10,12 +11,6 @@
 
 #ifdef CLOTH_HAVE_CH10_MAP
 namespace {
-
-void write_part(const cloth_test::fs::path& file, const std::string& part, double T, const std::string& rows) {
-  std::ofstream out(file);
-  out << "# part " << part << " T " << T << " motion_over_frames 1.5\n# side program forces setting steps seconds "
-      << "error_at_T error_over_frames status\n" << rows;
-}
 
 std::string printed(const char* fmt, double x) {
   char text[64];
@@ -33,12 +28,12 @@ TEST_CASE("the map's cost model: a measured growth per doubling predicts the nex
   // 40 x 40. Implicit Euler grows 0.8/0.4 over 0.5/0.6, 2.4 times (p = 1.26), below the floor p = 2 of a method
   // whose every step touches all n^2 particles: 0.8 x 4 = 3.2 s. XPBD reaches 1 mm on 20 x 20 only; the peer
   // reaches 1 cm on both (p = log2 12) and 1 mm on neither.
-  write_part(dir.path() / "map_curtain_20_1e5.dat", "curtain_20_1e5", 0.6,
+  cloth_test::write_map_part(dir.path() / "map_curtain_20_1e5.dat", "curtain_20_1e5", 0.6, 1.5,
              "book rk4 book \"h = 1/2760\" 1656 1 5e-4 5e-04 ok\n"
              "book implicit_euler book \"h = 1/60\" 36 0.5 5e-3 5e-03 ok\n"
              "book xpbd book \"xpbd/16sub, h = 1/60\" 36 1 5e-4 5e-04 ok\n"
              "peer odeint_rk4 plain \"h = 1/2760\" 1656 2 5e-3 5e-03 ok\n");
-  write_part(dir.path() / "map_curtain_40_1e5.dat", "curtain_40_1e5", 0.4,
+  cloth_test::write_map_part(dir.path() / "map_curtain_40_1e5.dat", "curtain_40_1e5", 0.4, 1.5,
              "book rk4 book \"h = 1/5520\" 2208 12 5e-4 5e-04 ok\n"
              "book implicit_euler book \"h = 1/60\" 24 0.8 5e-3 5e-03 ok\n"
              "book xpbd book \"xpbd/16sub, h = 1/60\" 24 4 5e-3 5e-03 ok\n"
