@@ -135,7 +135,8 @@ void predicted_map(const Settings& s, const StepCosts& cost, const std::map<doub
   const double tols[2] = {1e-2, 1e-3};
   int winner_index = 0;
   std::map<std::string, int> winner_code;
-  std::string winners = "# tol K n winner_code winner predicted_seconds runner_up_ratio (code -1: met by standing still)\n";
+  std::string winners =
+      "# tol K n winner_code winner predicted_seconds runner_up_ratio motion_at_T (code -1: met by standing still)\n";
   for (const auto& [K, c] : curves) {
     if (c.T != 0.5) continue;
     for (int t = 0; t < 2; ++t) {
@@ -144,7 +145,7 @@ void predicted_map(const Settings& s, const StepCosts& cost, const std::map<doub
       for (int n : sizes) {
         if (still) {  // nobody's win: marked apart in the figure (winner code -1)
           row.emplace_back("met by standing still");
-          winners += format("%g %g %d -1 standing_still 0 0\n", tols[t], K, n);
+          winners += format("%g %g %d -1 standing_still 0 0 %.6e\n", tols[t], K, n, c.displacement);
           continue;
         }
         std::string best;
@@ -162,8 +163,8 @@ void predicted_map(const Settings& s, const StepCosts& cost, const std::map<doub
           continue;
         }
         if (!winner_code.contains(best)) winner_code[best] = winner_index++;
-        winners += format("%g %g %d %d %s %.6e %.6e\n", tols[t], K, n, winner_code[best], best.c_str(), best_seconds,
-                          second / best_seconds);
+        winners += format("%g %g %d %d %s %.6e %.6e %.6e\n", tols[t], K, n, winner_code[best], best.c_str(),
+                          best_seconds, second / best_seconds, c.displacement);
         row.push_back(format("%s: %.3g s%s, next %.1fx", label(best).c_str(), best_seconds,
                              n == 20 ? " (measured)" : "", second / best_seconds));
       }
