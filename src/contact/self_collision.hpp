@@ -24,6 +24,9 @@ struct SelfCollisionWork {
   long long distance_tests = 0;   ///< distances the hash's queries computed
   long long passes = 0;           ///< response passes over the candidates
   double seconds = 0;             ///< processor seconds of the clamp, hash builds, queries and responses
+  /// Of them, the sweep's (clamp_and_correct): the clamp and the obstacle correction of every particle, which a
+  /// step without self-collision makes too.
+  double sweep_seconds = 0;
 };
 
 /// The particles of one cloth, their rest positions (3 per particle, the flat sheet the scene starts from) and the
@@ -106,6 +109,7 @@ class SelfCollision {
   [[nodiscard]] double thickness() const { return thickness_; }
   [[nodiscard]] const SelfCollisionWork& work() const { return work_; }
   void add_seconds(double s) { work_.seconds += s; }
+  void add_sweep_seconds(double s) { work_.sweep_seconds += s; }
   void count_clamped(int n) { work_.clamped += n; }
 
  private:

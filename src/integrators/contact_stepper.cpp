@@ -56,6 +56,8 @@ void ContactStepper::correct_with_self_collision(double h, Vector& x, Vector& v)
   const std::clock_t start = std::clock();
   // The clamp, the obstacles and the margin's measure, in one sweep over the particles.
   last_contacts_ = self_->clamp_and_correct(model_, x0_, h, x, v);
+  const std::clock_t swept = std::clock();
+  self_->add_sweep_seconds(static_cast<double>(swept - start) / CLOCKS_PER_SEC);
   // The candidates of the last build while no particle moved a quarter thickness since; parting a pair may push a
   // particle into the ground or towards a third one: alternate until nothing moves. The passes move particles
   // too, so the list is checked again after them: when they carried a particle beyond the margin, the hash is
