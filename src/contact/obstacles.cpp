@@ -61,6 +61,7 @@ void validate(const ContactModel& model) {
 }
 
 namespace {
+// [obstacle_contact]
 
 // The cone applied to one impulse: a tangential vector t (a displacement or a velocity) that an impulse of normal
 // size j_n acts on. Coulomb allows a tangential impulse up to mu_s j_n to hold t at zero; beyond it the contact
@@ -119,9 +120,9 @@ int resolve_particle(const ContactModel& model, Eigen::Index s, const Eigen::Ref
   return contacts;
 }
 
+// [obstacle_contact]
 }  // namespace
 
-// [obstacle_contact]
 int resolve_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
                               Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
   int contacts = 0;
@@ -141,7 +142,6 @@ int resolve_obstacle_contacts(const ContactModel& model, Eigen::Index s, const E
                               Eigen::Ref<Eigen::VectorXd>& x1, Eigen::Ref<Eigen::VectorXd>& v1) {
   return resolve_particle(model, s, x0, x1, v1);
 }
-// [obstacle_contact]
 
 int project_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
                               Eigen::Ref<Eigen::VectorXd> x1) {
