@@ -31,7 +31,7 @@ SceneParams sheet_on_incline(double theta) {
   SceneParams p;
   p.grid = Grid{10, 10, 0.02};
   p.mass = particle_mass(0.2, p.grid.d);
-  p.stiffness = 10.0;  // omega_max ~ sqrt(16 K / m) ~ 1400 /s: symplectic Euler is stable below h ~ 1.4 ms
+  p.stiffness = 10.0;  // omega_max = sqrt(10.125 K / m) = 1125 /s: symplectic Euler is stable below h = 1.78 ms
   p.damping = 0.0;
   p.pins = PinSet::none;
   p.initial_velocity_z = 0.0;
