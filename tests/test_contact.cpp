@@ -234,7 +234,8 @@ TEST_CASE("a sheet dropped on a sphere on the ground: no particle ends an accept
   model.obstacles.emplace_back(Sphere{Eigen::Vector3d(cx, cx, r), r});
   model.thickness = thickness;
   model.friction = {0.3, 0.2};
-  for (const char* method : {"symplectic_euler", "rk4", "implicit_euler", "xpbd", "small_steps", filtered}) {
+  for (const char* method : {"symplectic_euler", "rk4", "implicit_euler", "sdirk2", "bdf2", "local_global", "xpbd",
+                             "small_steps", filtered}) {
     CAPTURE(method);
     ForceField field(scene);
     const std::unique_ptr<Stepper> stepper = contact_stepper(method, field, model);

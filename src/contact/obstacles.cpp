@@ -72,10 +72,6 @@ Eigen::Vector3d coulomb(const Eigen::Vector3d& t, double j_n, const Friction& fr
   return t * (1.0 - friction.mu_k * j_n / t_norm);                     // on the kinetic cone: slides
 }
 
-}  // namespace
-
-namespace {
-
 // What the displacement rule did to one particle against one obstacle.
 enum class Touch { none, stuck, slid };
 
