@@ -31,7 +31,7 @@ std::unique_ptr<Stepper> filtered_implicit_euler(ForceField& field, const Contac
   if (newton.jacobian() && *newton.jacobian() != StiffnessTreatment::definite)
     throw InputError("--jacobian: filtered conjugate gradients need the definite matrix: expected definite");
   // Without --newton, Baraff and Witkin's single iteration.
-  const bool iterate = s.variant == NewtonVariant::full && newton.first_given().size() > 0 &&
+  const bool iterate = s.variant == NewtonVariant::full && !newton.first_given().empty() &&
                        !(s.max_iterations == 1);
   FilteredNewton settings;
   if (iterate) settings = {s.max_iterations, s.tolerance};
