@@ -63,11 +63,12 @@ TEST_CASE("a folding strip: no two layers closer than the thickness after any st
     SelfCollision check(scene.initial_positions(), thickness);
     Vector x = scene.initial_positions(), v = scene.initial_velocities();
     const double h = 5e-4;
-    double closest = thickness, lowest_top = x[x.size() - 1];
+    double closest = thickness, lowest_top = x[x.size() - 1], deepest = -1;
     int contacts = 0;
     for (int k = 0; k < 1600; ++k) {  // 0.8 s: the top falls 0.4 m and the strip lies folded on the ground
       REQUIRE(stepper.step(h, x, v));
       closest = std::min(closest, check.closest_distance(x, 2));
+      deepest = std::max(deepest, deepest_penetration(model, x));
       if (k % 100 == 99) {  // the hash's candidates against every pair, on the states of a fold
         check.find_candidates(x);
         std::vector<std::pair<int, int>> found = check.candidates(), truth = check.candidates_brute_force(x);
@@ -85,7 +86,7 @@ TEST_CASE("a folding strip: no two layers closer than the thickness after any st
       lowest_top = std::min(lowest_top, x[x.size() - 1]);
     }
     CHECK(closest >= 0.99 * thickness);
-    CHECK(deepest_penetration(model, x) <= 0.01 * thickness);
+    CHECK(deepest <= 0.01 * thickness);  // after every step, not only the last
     CHECK(lowest_top < 0.1);  // the strip did fall and fold: its top came down from 0.39 m
     CHECK(stepper.self_collision()->work().pairs_corrected > 100);  // and its layers met
     CHECK(contacts > 50);  // the comparison saw pairs

@@ -24,10 +24,10 @@ struct Crossing {
 // [edge_crossing]
 // Edge a = (x0, x1) along x, at height +z0, falls at speed w; edge b = (x2, x3) along y, at -z0, rises at w. The
 // response is applied after every step to the four pairs that join the edges, and each edge is then given back
-// its length d (its two ends moved alike along it): the edges are rigid, as stiff cloth springs make them. The edges have crossed when the
-// signed distance between their lines, (x0 - x2) . (e_a x e_b) / |e_a x e_b|, has changed sign while the point
-// where their projections cross lies inside both (Bridson et al. 2002's edge-edge test, sampled per step rather
-// than solved in time).
+// its length d (its two ends moved alike along it): the edges are rigid, as stiff cloth springs make them. The
+// edges have crossed when the signed distance between their lines, (x0 - x2) . (e_a x e_b) / |e_a x e_b|, has
+// changed sign while the point where their projections cross lies inside both (Bridson et al. 2002's edge-edge
+// test, sampled per step rather than solved in time).
 Crossing cross_edges(double d, double thickness) {
   const double z0 = 2 * thickness, w = 1.0, h = 1e-4;
   Eigen::VectorXd x(12), v(12);

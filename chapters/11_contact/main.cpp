@@ -127,9 +127,11 @@ int main(int argc, char** argv) {
   IterationFlags iterations;
   CommandLine cli("ch11_contact",
                   "Chapter 11: one run of a scene with contact (incline, sphere or fold) with any method of the\n"
-                  "registry. implicit_euler enforces contact inside conjugate gradients (Baraff and Witkin's filter),\n"
-                  "XPBD as inequality constraints in its substeps, every other method by a correction after each\n"
-                  "step; the fold scene adds self-collision. --report-runs makes the chapter's figures and tables.");
+                  "registry. implicit_euler enforces contact inside conjugate gradients (Baraff and Witkin's filter,\n"
+                  "one Newton iteration per step unless --newton full, --newton-tol or --newton-max-iter asks for\n"
+                  "more; not in the fold scene), XPBD as inequality constraints in its substeps, every other method\n"
+                  "by a correction after each step; the fold scene adds self-collision. --report-runs makes the\n"
+                  "chapter's figures and tables.");
   for (const auto& [flag, value] : scene_defaults(scene_of(argc, argv))) cli.set_default(flag, value);
   std::string names;
   for (const std::string& name : method_names()) names += (names.empty() ? "" : ", ") + name;

@@ -61,7 +61,7 @@ double mean_downhill(const Vector& x, const Vector& x0, double theta) {
 // [incline_study]
 void incline_study(const Study& study) {
   MarkdownTable table({"method", "angle [deg]", "tan / mu_s", "measured a [m/s^2]", "g (sin - mu_k cos) [m/s^2]",
-                       "difference", "deepest [% of thickness]"}, "lrrrrrr");
+                       "measured / closed form - 1", "deepest [% of thickness]"}, "lrrrrrr");
   std::string curves = "# t mean_downhill_displacement closed_form (symplectic Euler, per angle, one block each)\n";
   const double T = 0.5;
   for (const double degrees : {std::atan(0.9 * 0.3) * 180 / std::numbers::pi, 30.0}) {

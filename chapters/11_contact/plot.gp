@@ -18,7 +18,7 @@ set ylabel "kinetic energy / peak"
 set logscale y
 set format y "10^{%L}"
 set yrange [1e-16:2]
-set key top right font ",9"
+set key bottom left font ",9"
 names = "symplectic_euler rk4 implicit_euler_(one_iteration) implicit_euler_(Newton) sdirk2 local_global xpbd"
 plot for [k = 0:6] data.'/sphere_energy.dat' index k using 1:2 with lines lw 2 title word(names, k + 1) noenhanced
 unset logscale y

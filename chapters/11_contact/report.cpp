@@ -16,7 +16,9 @@ bool quick = false;
 }
 
 void add_report_flags(cloth::CommandLine& cli) {
-  cli.add_switch("--quick", "with --report-runs: shorter runs and a smaller benchmark (the plots' version)",
+  cli.add_switch("--quick",
+                 "with --report-runs: the fold and its skins on a 30 x 100 strip to 1 s instead of 30 x 200 to 1.5 s "
+                 "(the plots' version)",
                  [] { quick = true; });
 }
 

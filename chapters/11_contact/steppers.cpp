@@ -19,8 +19,8 @@ namespace {
 std::unique_ptr<Stepper> filtered_implicit_euler(ForceField& field, const ContactModel& model,
                                                  const NewtonFlags& newton, KeyValues& lines) {
   if (model.self_collision)
-    throw InputError("--method implicit_euler: the filtered step does not take self-collision; the fold scene runs "
-                     "with any other method, implicit_euler included only for the incline and the sphere");
+    throw InputError("--method implicit_euler: the filtered step does not take self-collision, which the fold "
+                     "scene needs: expected another method (implicit_euler runs the incline and the sphere)");
   const NewtonSettings& s = newton.given();
   if (s.variant == NewtonVariant::modified)
     throw InputError("--newton modified: implicit_euler with contact refactors nothing (its CG needs no "
@@ -31,7 +31,7 @@ std::unique_ptr<Stepper> filtered_implicit_euler(ForceField& field, const Contac
   if (newton.jacobian() && *newton.jacobian() != StiffnessTreatment::definite)
     throw InputError("--jacobian: filtered conjugate gradients need the definite matrix: expected definite");
   // Without --newton, Baraff and Witkin's single iteration.
-  const bool iterate = s.variant == NewtonVariant::full && newton.first_given().size() > 0 &&
+  const bool iterate = s.variant == NewtonVariant::full && !newton.first_given().empty() &&
                        !(s.max_iterations == 1);
   FilteredNewton settings;
   if (iterate) settings = {s.max_iterations, s.tolerance};

@@ -61,6 +61,7 @@ void validate(const ContactModel& model) {
 }
 
 namespace {
+// [obstacle_contact]
 
 // The cone applied to one impulse: a tangential vector t (a displacement or a velocity) that an impulse of normal
 // size j_n acts on. Coulomb allows a tangential impulse up to mu_s j_n to hold t at zero; beyond it the contact
@@ -70,10 +71,6 @@ Eigen::Vector3d coulomb(const Eigen::Vector3d& t, double j_n, const Friction& fr
   if (t_norm <= friction.mu_s * j_n) return Eigen::Vector3d::Zero();  // inside the static cone: sticks
   return t * (1.0 - friction.mu_k * j_n / t_norm);                     // on the kinetic cone: slides
 }
-
-}  // namespace
-
-namespace {
 
 // What the displacement rule did to one particle against one obstacle.
 enum class Touch { none, stuck, slid };
@@ -119,9 +116,9 @@ int resolve_particle(const ContactModel& model, Eigen::Index s, const Eigen::Ref
   return contacts;
 }
 
+// [obstacle_contact]
 }  // namespace
 
-// [obstacle_contact]
 int resolve_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
                               Eigen::Ref<Eigen::VectorXd> x1, Eigen::Ref<Eigen::VectorXd> v1) {
   int contacts = 0;
@@ -141,7 +138,6 @@ int resolve_obstacle_contacts(const ContactModel& model, Eigen::Index s, const E
                               Eigen::Ref<Eigen::VectorXd>& x1, Eigen::Ref<Eigen::VectorXd>& v1) {
   return resolve_particle(model, s, x0, x1, v1);
 }
-// [obstacle_contact]
 
 int project_obstacle_contacts(const ContactModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
                               Eigen::Ref<Eigen::VectorXd> x1) {
