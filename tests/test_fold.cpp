@@ -214,3 +214,34 @@ TEST_CASE("SDIRK2 with contact filtered in each stage: the drape at 10 ms keeps 
   // An explicit first stage has no solve to filter.
   CHECK_THROWS_AS(ContactDirk(field, builtin_implicit_tableau("esdirk32"), drape.model), InputError);
 }
+
+// The page's Exercise 9: SDIRK2's second stage starts from v0 + (a21 / a11)(V1 - v0), a21 / a11 = 1 + sqrt 2, so a
+// sheet stopped against the ground in the first stage starts the second moving away at sqrt(2) u, is not
+// constrained there, and ends the step at sqrt(2) u - gamma h g; implicit Euler stops it.
+TEST_CASE("SDIRK2 filtered in each stage: a flat sheet landing at u leaves the ground at sqrt(2) u - gamma h g") {
+  SceneParams p;
+  p.grid = Grid{2, 2, 0.05};
+  p.mass = 5e-4;
+  p.stiffness = 50;
+  p.damping = 0.1;
+  p.pins = PinSet::none;
+  const double u = 1, h = 1e-2, g = 9.81, gamma = 1 - 1 / std::sqrt(2.0);
+  p.initial_velocity_z = -u;
+  ContactModel model;
+  model.obstacles.emplace_back(HalfSpace{});
+  model.thickness = 0.005;
+  model.friction = {0.3, 0.2};
+  p.origin = Eigen::Vector3d(0, 0, model.thickness);  // touching at t = 0
+  const Scene scene(p);
+  ForceField field(scene);
+  ContactDirk sdirk2(field, builtin_implicit_tableau("sdirk2"), model);
+  ContactImplicitEuler euler(field, model);
+  for (Stepper* stepper : {static_cast<Stepper*>(&sdirk2), static_cast<Stepper*>(&euler)}) {
+    Vector x = scene.initial_positions(), v = scene.initial_velocities();
+    REQUIRE(stepper->step(h, x, v));
+    for (int s = 0; s < 4; ++s) {
+      CHECK(v[3 * s + 2] == doctest::Approx(stepper == &euler ? 0.0 : std::sqrt(2.0) * u - gamma * h * g).epsilon(1e-9));
+      CHECK(std::abs(v[3 * s]) + std::abs(v[3 * s + 1]) < 1e-12);  // the flat sheet stays flat
+    }
+  }
+}
