@@ -3,6 +3,7 @@
 
 #include "map_run_common.hpp"
 #include "plain_xpbd.hpp"
+#include "study.hpp"
 
 #include "analysis/reference_trajectory.hpp"
 #include "integrators/configuration.hpp"
@@ -23,14 +24,9 @@ namespace ch10 {
 using namespace map_detail;
 
 MapRun book_run(const Scene& scene, const std::string& name, double h, double T) {
-  Configuration c = parse_configuration(name);
-  NewtonSettings& newton = c.settings.newton;
-  newton.treatment = c.jacobian ? *c.jacobian : default_treatment(newton.solver, false);
-  newton.tolerance = 1e-6;  // a velocity change below 1e-6 h in position: far under every level of the map
-  newton.cg_tolerance = 1e-8;
   return timed([&] {
     ForceField field(scene);
-    auto stepper = make_stepper(c.method, field, c.settings);
+    auto stepper = make_method(name, field);  // the chapter's settings (study.cpp): Newton to 1e-6, at most 1000
     MapRun run;
     Vector x = scene.initial_positions(), v = scene.initial_velocities(), all(3 * scene.particle_count());
     const long long every = std::max(1LL, std::llround(frame_interval / h));
