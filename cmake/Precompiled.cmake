@@ -5,7 +5,16 @@
 # what <cmath> defines); the chapter programs share one; the tests' adds doctest. The library is left out when
 # clang-tidy is to read this build's compile_commands.json (the default, as .ci/run does): clang-tidy cannot read
 # GCC's precompiled header and would report it as an error. -DCLOTH_PCH=OFF compiles every file from its headers.
-option(CLOTH_PCH "Precompile Eigen's and the standard library's headers (and doctest's for the tests)" ON)
+# Under ccache (-DCMAKE_CXX_COMPILER_LAUNCHER=ccache) it is off by default: ccache compiles a file that uses a
+# precompiled header without caching it (unless its sloppiness settings allow it), and a file it has cached costs
+# nothing to compile anyway.
+if(CMAKE_CXX_COMPILER_LAUNCHER MATCHES "ccache")
+  set(cloth_pch_default OFF)
+else()
+  set(cloth_pch_default ON)
+endif()
+option(CLOTH_PCH "Precompile Eigen's and the standard library's headers (and doctest's for the tests)"
+       ${cloth_pch_default})
 option(CLOTH_PCH_LIBRARY "Also precompile them for the library's own files (clang-tidy cannot then read src/)" OFF)
 
 set(CLOTH_PCH_HEADERS <Eigen/Dense> <Eigen/Sparse> <algorithm> <array> <cmath> <cstdio> <functional> <limits>
