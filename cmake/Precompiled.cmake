@@ -20,20 +20,21 @@ option(CLOTH_PCH_LIBRARY "Also precompile them for the library's own files (clan
 set(CLOTH_PCH_HEADERS <Eigen/Dense> <Eigen/Sparse> <algorithm> <array> <cmath> <cstdio> <functional> <limits>
     <map> <memory> <optional> <sstream> <stdexcept> <string> <utility> <vector>)
 
-# cloth_precompile_programs(target...): the chapter programs' and tools' shared header, compiled once (for the
-# first target) and reused by the others, whose flags are the same.
+# cloth_precompile_programs(target...): the chapter programs' and tools' shared header, compiled once by a target
+# of its own (cloth_pch_programs, an empty file with the programs' flags, which needs nothing else built first, so
+# that its header is compiled beside the library's files) and reused by the programs.
 function(cloth_precompile_programs)
   if(NOT CLOTH_PCH)
     return()
   endif()
-  get_property(owner GLOBAL PROPERTY CLOTH_PCH_PROGRAM_OWNER)
+  if(NOT TARGET cloth_pch_programs)
+    set(empty ${CMAKE_BINARY_DIR}/cloth_pch_programs.cpp)
+    file(CONFIGURE OUTPUT ${empty} CONTENT "// The chapter programs' precompiled header (cmake/Precompiled.cmake).\n")
+    add_library(cloth_pch_programs OBJECT ${empty})
+    target_link_libraries(cloth_pch_programs PRIVATE Eigen3::Eigen)
+    target_precompile_headers(cloth_pch_programs PRIVATE ${CLOTH_PCH_HEADERS})
+  endif()
   foreach(target IN LISTS ARGN)
-    if(NOT owner)
-      target_precompile_headers(${target} PRIVATE ${CLOTH_PCH_HEADERS})
-      set(owner ${target})
-      set_property(GLOBAL PROPERTY CLOTH_PCH_PROGRAM_OWNER ${owner})
-    else()
-      target_precompile_headers(${target} REUSE_FROM ${owner})
-    endif()
+    target_precompile_headers(${target} REUSE_FROM cloth_pch_programs)
   endforeach()
 endfunction()
