@@ -714,7 +714,7 @@ namespace {
 /// What a signalled program did: its status and output, and the processor time it spent from the signal to its end.
 struct Stopped {
   ProgramRun run;
-  double seconds = 0;
+  double cpu_seconds = 0;
 };
 
 /// Starts `program args --out out`, waits until `trigger` exists and `delay` more seconds, sends `signal`, and
@@ -732,7 +732,7 @@ Stopped signalled_timed(const ProgramFolder& folder, const std::string& program,
   double cpu_at_end = 0;
   s.run.status = wait_for(child, 60, &cpu_at_end);
   CHECK(cpu_at_signal >= 0);
-  s.seconds = cpu_at_end - cpu_at_signal;
+  s.cpu_seconds = cpu_at_end - cpu_at_signal;
   s.run.out = read_text(child.out);
   s.run.err = read_text(child.err);
   return s;
@@ -766,7 +766,7 @@ TEST_CASE("SIGTERM and SIGINT inside CVODE and ARKODE: the run stops within a se
     CAPTURE(c.solver);
     CAPTURE(s.run.err);
     CHECK(s.run.status == 128 + c.signal);
-    CHECK(s.seconds < honoured_within);
+    CHECK(s.cpu_seconds < honoured_within);
     CHECK(s.run.err.rfind("ch09_sundials_benchmark: " + c.solver + " interrupted by " + c.name + " after step ", 0) == 0);
     CHECK(count_of(s.run.err, "\n") == 1);
     const fs::path out = folder.cwd() / "out";
@@ -817,7 +817,7 @@ TEST_CASE("SIGINT and SIGTERM during the benchmark studies: honoured within a se
     CAPTURE(c.args.front());
     CAPTURE(s.run.err);
     CHECK(s.run.status == 128 + c.signal);
-    CHECK(s.seconds < honoured_within);
+    CHECK(s.cpu_seconds < honoured_within);
     CHECK(contains(s.run.err, " interrupted by " + name));
     CHECK(count_of(s.run.err, "\n") == 1);
     const fs::path out = folder.cwd() / "out";
@@ -837,7 +837,7 @@ TEST_CASE("SIGINT during ch09's energy study: the interrupted run says so and no
                                     SIGINT);
   CAPTURE(s.run.err);
   CHECK(s.run.status == 130);
-  CHECK(s.seconds < honoured_within);
+  CHECK(s.cpu_seconds < honoured_within);
   CHECK(count_of(s.run.err, "\n") == 1);
   CHECK(contains(s.run.err, " interrupted by SIGINT after step "));
   const fs::path out = folder.cwd() / "out";
