@@ -68,8 +68,9 @@ TEST_CASE("ch12_bending: --grid and --pins are refused for the cantilever, and a
 }
 
 TEST_CASE("ch12_bending: SIGINT during the rest-shape search ends it within a second, keeps the shape, exits 130") {
-  // The flexion strip at L/80: Newton's method takes many seconds on it (the page says why), so a signal half a
-  // second after the program starts lands inside the search. On a loaded machine the program may get a small share
+  // The flexion strip at L/80: Newton's method takes some sixty iterations on it (the page says why), about 2 s of
+  // processor time in Release and many more under the sanitizers, so a signal half a second after the program
+  // starts lands inside the search. On a loaded machine the program may get a small share
   // of a processor, and the signal may then come before the search's first iteration (its set-up takes a
   // sixtieth of the search's processor time, but may take more than half a second on the wall clock): that run is
   // interrupted correctly but does not test the search, so the signal is sent again later, in a new run. For the
