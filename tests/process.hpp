@@ -8,7 +8,10 @@
 #include <chrono>
 #include <csignal>
 #include <fcntl.h>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <thread>
@@ -60,13 +63,19 @@ inline Child spawn_chapter(const std::string& program, const std::vector<std::st
 
 /// Waits for the child to end: its exit status, 128 + n when signal n ended it (as a shell reports it), or 124
 /// when it was still running after `time_guard_seconds` (it is then killed: a hang fails the test, it does not
-/// hang the suite).
-inline int wait_for(const Child& child, double time_guard_seconds = 60) {
+/// hang the suite). Given `cpu_seconds`, it is set to the processor time (user and system) the child used in all.
+inline int wait_for(const Child& child, double time_guard_seconds = 60, double* cpu_seconds = nullptr) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(time_guard_seconds);
   for (;;) {
     int raw = 0;
-    const pid_t done = ::waitpid(child.pid, &raw, WNOHANG);
-    if (done == child.pid) return WIFEXITED(raw) ? WEXITSTATUS(raw) : WIFSIGNALED(raw) ? 128 + WTERMSIG(raw) : -1;
+    rusage usage{};
+    const pid_t done = ::wait4(child.pid, &raw, WNOHANG, &usage);
+    if (done == child.pid) {
+      if (cpu_seconds != nullptr)
+        *cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                       1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+      return WIFEXITED(raw) ? WEXITSTATUS(raw) : WIFSIGNALED(raw) ? 128 + WTERMSIG(raw) : -1;
+    }
     if (done < 0) return -1;
     if (std::chrono::steady_clock::now() > deadline) {
       ::kill(child.pid, SIGKILL);
@@ -75,6 +84,28 @@ inline int wait_for(const Child& child, double time_guard_seconds = 60) {
     }
     std::this_thread::sleep_for(std::chrono::microseconds(500));
   }
+}
+
+/// The processor time (user and system, to the kernel's tick of 10 ms) a running child has used so far, read
+/// from /proc/<pid>/stat; -1 when it cannot be read. With wait_for's total, it gives the processor time a program
+/// spent after a signal: unlike the wall-clock time, it does not grow while a loaded machine keeps the program
+/// waiting for a processor.
+inline double cpu_seconds_so_far(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string stat;
+  std::getline(in, stat);
+  const auto end_of_name = stat.rfind(')');  // the program's name, in parentheses, may hold spaces
+  if (end_of_name == std::string::npos) return -1;
+  std::istringstream fields(stat.substr(end_of_name + 1));
+  std::string field;
+  long long utime = -1, stime = -1;
+  // After the name: state (field 3) ... utime (field 14) and stime (field 15), in clock ticks.
+  for (int k = 3; k <= 15 && fields >> field; ++k) {
+    if (k == 14) utime = std::stoll(field);
+    if (k == 15) stime = std::stoll(field);
+  }
+  if (utime < 0 || stime < 0) return -1;
+  return static_cast<double>(utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
 }
 
 /// Polls every half millisecond until `path` exists; false when the child ended first or `seconds` passed.

@@ -68,27 +68,41 @@ TEST_CASE("ch12_bending: --grid and --pins are refused for the cantilever, and a
 }
 
 TEST_CASE("ch12_bending: SIGINT during the rest-shape search ends it within a second, keeps the shape, exits 130") {
-  // The flexion strip at L/80: Newton's method takes many seconds on it (the page says why), so the signal lands
-  // inside the search.
-  const ProgramFolder folder;
-  const Child child = spawn_chapter("ch12_bending", {"--bending", "flexion", "--overhang", "0.1", "--spacing",
-                                                     "0.00125", "--mass", "3.125e-7", "--out", "out"}, folder.cwd());
-  REQUIRE(wait_until_exists(child, folder.cwd() / "out"));
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  const auto signalled = std::chrono::steady_clock::now();
-  ::kill(child.pid, SIGINT);
-  const int status = wait_for(child, 60);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
-  const std::string err = read_text(child.err);
-  CAPTURE(err);
-  CHECK(status == 130);
-  CHECK(seconds < 1.0);
-  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
-  CHECK(err.find("SIGINT") != std::string::npos);
-  auto kv = key_values(read_text(folder.cwd() / "out" / "run.txt"));
-  CHECK(kv["status"] == "interrupted");
-  CHECK(std::stoi(kv["iterations"]) >= 1);
-  CHECK(data_lines(folder.cwd() / "out" / "final.dat").size() == 82u * 21u);
+  // The flexion strip at L/80: Newton's method takes some sixty iterations on it (the page says why), about 2 s of
+  // processor time in Release and many more under the sanitizers, so a signal half a second after the program
+  // starts lands inside the search. On a loaded machine the program may get a small share
+  // of a processor, and the signal may then come before the search's first iteration (its set-up takes a
+  // sixtieth of the search's processor time, but may take more than half a second on the wall clock): that run is
+  // interrupted correctly but does not test the search, so the signal is sent again later, in a new run. For the
+  // same reason "within a second" is the processor time the program spends after the signal, which is all a
+  // program controls: the wall-clock time adds the time it waits for a processor.
+  for (const double delay : {0.5, 1.0, 2.0, 4.0}) {
+    CAPTURE(delay);
+    const ProgramFolder folder;
+    const Child child = spawn_chapter("ch12_bending", {"--bending", "flexion", "--overhang", "0.1", "--spacing",
+                                                       "0.00125", "--mass", "3.125e-7", "--out", "out"},
+                                      folder.cwd());
+    REQUIRE(wait_until_exists(child, folder.cwd() / "out"));
+    std::this_thread::sleep_for(std::chrono::duration<double>(delay));
+    const double cpu_at_signal = cpu_seconds_so_far(child.pid);
+    ::kill(child.pid, SIGINT);
+    double cpu_at_end = 0;
+    const int status = wait_for(child, 60, &cpu_at_end);
+    const std::string err = read_text(child.err);
+    CAPTURE(err);
+    CHECK(status == 130);
+    REQUIRE(cpu_at_signal >= 0);
+    CHECK(cpu_at_end - cpu_at_signal < 1.0);
+    CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+    CHECK(err.find("SIGINT") != std::string::npos);
+    auto kv = key_values(read_text(folder.cwd() / "out" / "run.txt"));
+    CHECK(kv["status"] == "interrupted");
+    CHECK(data_lines(folder.cwd() / "out" / "final.dat").size() == 82u * 21u);
+    if (std::stoi(kv["iterations"]) >= 1 || delay == 4.0) {
+      CHECK(std::stoi(kv["iterations"]) >= 1);  // the signal came during the search
+      break;
+    }
+  }
 }
 
 #endif
