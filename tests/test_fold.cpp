@@ -215,7 +215,7 @@ TEST_CASE("SDIRK2 with contact filtered in each stage: the drape at 10 ms keeps 
   CHECK_THROWS_AS(ContactDirk(field, builtin_implicit_tableau("esdirk32"), drape.model), InputError);
 }
 
-// The page's Exercise 9: SDIRK2's second stage starts from v0 + (a21 / a11)(V1 - v0), a21 / a11 = 1 + sqrt 2, so a
+// Chapter 11's Exercise 10: SDIRK2's second stage starts from v0 + (a21 / a11)(V1 - v0), a21 / a11 = 1 + sqrt 2, so a
 // sheet stopped against the ground in the first stage starts the second moving away at sqrt(2) u, is not
 // constrained there, and ends the step at sqrt(2) u - gamma h g; implicit Euler stops it.
 TEST_CASE("SDIRK2 filtered in each stage: a flat sheet landing at u leaves the ground at sqrt(2) u - gamma h g") {
