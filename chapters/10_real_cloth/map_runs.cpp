@@ -6,9 +6,7 @@
 #include "study.hpp"
 
 #include "analysis/reference_trajectory.hpp"
-#include "integrators/configuration.hpp"
 #include "program/interrupt.hpp"
-#include "program/method_flags.hpp"
 #include "program/timing.hpp"
 
 #include <boost/numeric/odeint.hpp>
