@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 using namespace cloth;
 
@@ -116,6 +117,39 @@ TEST_CASE("frictionless contact stops the normal velocity only: tangential motio
   CHECK(v1.head<3>() == Eigen::Vector3d(2, -1, 0));
   CHECK(x1[5] == doctest::Approx(0.01).epsilon(1e-14));
   CHECK(v1.tail<3>() == Eigen::Vector3d(0.5, 0, 0.4));   // already leaving: untouched
+}
+
+// Chapter 11's Exercise 1: symplectic Euler moves a resting particle h^2 g into the shell and the correction returns
+// it to rest where it was; explicit Euler does not move it, so the contact is seen a step late and its velocity
+// alternates between -h g and 0 while it stays on the shell.
+TEST_CASE("a particle resting on the ground: symplectic Euler's step corrected to rest, explicit Euler's a step late") {
+  SceneParams p;
+  p.grid = Grid{2, 2, 0.05};
+  p.mass = 5e-4;
+  p.stiffness = 50;
+  p.damping = 0.1;
+  p.pins = PinSet::none;
+  p.initial_velocity_z = 0;
+  p.gravity = g;
+  p.origin = Eigen::Vector3d(0, 0, thickness);  // a flat sheet on the shell, its springs at rest
+  const Scene scene(p);
+  const ContactModel ground = incline(0.0, 0.3, 0.2);
+  const double h = 1e-3;
+  for (const char* method : {"symplectic_euler", "explicit_euler"}) {
+    CAPTURE(method);
+    ForceField field(scene);
+    ContactStepper stepper(make_stepper(method, field), ground);
+    Vector x = scene.initial_positions(), v = scene.initial_velocities();
+    for (int k = 1; k <= 4; ++k) {
+      REQUIRE(stepper.step(h, x, v));
+      const bool late = std::string(method) == "explicit_euler" && k % 2 == 1;
+      CHECK(stepper.last_contacts() == (late ? 0 : scene.free_count()));
+      for (int s = 0; s < scene.free_count(); ++s) {
+        CHECK(x[3 * s + 2] == doctest::Approx(thickness).epsilon(1e-12));
+        CHECK(v[3 * s + 2] == doctest::Approx(late ? -h * g : 0.0).epsilon(1e-12));
+      }
+    }
+  }
 }
 
 TEST_CASE("a scene placed on the incline rests one thickness above it; a placement that is not a rotation is refused") {

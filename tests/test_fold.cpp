@@ -196,9 +196,10 @@ TEST_CASE("the draped sheet comes to rest on the sphere: kinetic energy below 1e
 }
 
 // Filtered in each stage, SDIRK2 at 10 ms ends the drape with a small fraction of the energy that the correction
-// after the step leaves (a velocity that is not motion, the page's table). How far below it settles depends on
-// rounding (stick and slip at the cone's edge): the bound is the correction's level over ten, not rest.
-TEST_CASE("SDIRK2 with contact filtered in each stage: the drape at 10 ms keeps a tenth of what correcting leaves") {
+// after the step leaves (a velocity that is not motion, the page's table). It hovers rather than settles, near
+// 1e-6 of its peak at the scene's damping; which value it shows at 6 s depends on rounding (a mass changed by
+// 1e-12 moves it from 2.8e-6 to 0.7e-6 or 4.5e-6), so the bounds are the correction's level over ten and 1e-5.
+TEST_CASE("SDIRK2 with contact filtered in each stage: the drape at 10 ms keeps under a tenth of what correcting leaves") {
   const Drape drape = small_drape();
   const Scene scene(drape.params);
   ForceField field(scene);
@@ -211,6 +212,7 @@ TEST_CASE("SDIRK2 with contact filtered in each stage: the drape at 10 ms keeps 
   ContactStepper corrected(make_stepper("sdirk2", field), drape.model);
   const DrapeRun after = run_drape(corrected, drape, scene, 1e-2, 6.0);
   CHECK(after.last > 1e-5 * after.peak);
+  CHECK(run.last / run.peak < 0.1 * after.last / after.peak);
   // An explicit first stage has no solve to filter.
   CHECK_THROWS_AS(ContactDirk(field, builtin_implicit_tableau("esdirk32"), drape.model), InputError);
 }
