@@ -53,7 +53,9 @@ bool ContactImplicitEuler::step(double h, Vector& x, Vector& v) {
   v += dv_;
   apply_impulses(v);
   x += h * v;
-  // Contacts that began during the step: corrected as the explicit methods' are, constrained from the next step.
+  // Contacts that began during the step: corrected as the explicit methods' are, and constrained from the next step
+  // if that left them on the shell (on a plane; on a sphere it lands only to first order, and the correction then
+  // keeps holding them).
   resolve_obstacle_contacts(model_, x0_, x, v);
   ++counters_.steps;
   return true;
