@@ -199,7 +199,7 @@ TEST_CASE("the draped sheet comes to rest on the sphere: kinetic energy below 1e
 // after the step leaves (a velocity that is not motion, the page's table). It hovers rather than settles, near
 // 1e-6 of its peak at the scene's damping; which value it shows at 6 s depends on rounding (a mass changed by
 // 1e-12 moves it from 2.8e-6 to 0.7e-6 or 4.5e-6), so the bounds are the correction's level over ten and 1e-5.
-TEST_CASE("SDIRK2 with contact filtered in each stage: the drape at 10 ms keeps under a tenth of what correcting leaves") {
+TEST_CASE("SDIRK2 filtered in each stage: the drape at 10 ms keeps under a tenth of what correcting leaves") {
   const Drape drape = small_drape();
   const Scene scene(drape.params);
   ForceField field(scene);
