@@ -38,6 +38,7 @@ cloth::OutputList report_outputs() {
           {"fold_frames.dat", figure, "frames of the strip folding"},
           {"skin.md", fragment, "the fold with each skin of the kept list: builds, candidates, cost"},
           {"hash.md", fragment, "a step's self-collision against a force evaluation, 30 x 100 to 30 x 800"},
+          {"adaptive_skin.md", fragment, "the fold's candidates refreshed particle by particle: queries and distances"},
           {"edge_crossing.md", fragment, "whether two crossing edges pass through each other, by spacing"}};
 }
 
@@ -55,6 +56,7 @@ int run_report(int argc, char** argv, const cloth::Options& opt) {
   fold_study(study);
   skin_study(study);
   hash_benchmark(study);
+  adaptive_skin_study(study);
   edge_crossing_study(study);
   return 0;
 }

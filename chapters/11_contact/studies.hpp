@@ -55,6 +55,7 @@ void sdirk2_stages_study(const Study& study);
 void fold_study(const Study& study);
 void skin_study(const Study& study);
 void hash_benchmark(const Study& study);
+void adaptive_skin_study(const Study& study);
 void edge_crossing_study(const Study& study);
 
 }  // namespace ch11
