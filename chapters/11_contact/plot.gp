@@ -43,20 +43,23 @@ set size noratio
 reset
 unset key
 unset colorbox
-set view 62, 32
+set view 62, 32, 1.15
 set view equal xyz  # one scale on every axis: the sphere looks round and the incline keeps its angle
 set xyplane relative 0
 set border 4095 lc rgb "#a0a0a0"
 set xlabel "x [m]"
-set ylabel "y [m]"
+set ylabel "y [m]" offset 2, -0.5
 set zlabel "z [m]" rotate by 90
 set tics textcolor rgb "#606060"
-# The cloth red (its underside blue where the view shows it), the obstacles in greys.
+# The cloth red, the obstacles in greys. With hidden3d each surface's underside takes the next linetype: the
+# cloth's blue where the view shows it, the sphere's the same as its outside.
 set linetype 11 lc rgb "#c0392b"
 set linetype 12 lc rgb "#1f618d"
 set linetype 13 lc rgb "#7f98ad"
 set linetype 14 lc rgb "#7f98ad"
 plane_colour = "#d9d4c7"
+# A GIF has 256 colours; pm3d's palette would take most of them and the plane would come out in the nearest grey.
+set palette maxcolors 8
 # The sphere's mesh: 24 meridians by 12 parallels keep its outline round at the animation's size; 48 by 24
 # looks the same there and costs the script 15 % more time.
 sphere_meridians = 24
@@ -73,7 +76,6 @@ read_geometry = 'ground_z = NaN; incline_angle = NaN; sphere = ""; \
   set datafile separator whitespace'
 
 scenes = "incline sphere fold"
-titles = "'The sheet sliding down the 30-degree incline' 'The sheet dropped onto the sphere' 'The strip folding on the ground'"
 do for [s = 1:3] {
   scene = word(scenes, s)
   file = data.'/'.scene.'_frames.dat'
@@ -87,6 +89,13 @@ do for [s = 1:3] {
   y0 = STATS_min; y1 = STATS_max
   stats file using 5 nooutput
   z0 = STATS_min; z1 = STATS_max
+  stats file using 1 nooutput  # the grid's rows i and columns j
+  M = STATS_max + 1
+  stats file using 2 nooutput
+  N = STATS_max + 1
+  title = scene eq "incline" ? sprintf("A %d x %d sheet sliding down the %g-degree incline", M, N, incline_angle) : \
+          scene eq "sphere" ? sprintf("A %d x %d sheet dropped onto the sphere", M, N) : \
+          sprintf("A %d x %d strip folding on the ground", M, N)
   y0 = y0 - margin; y1 = y1 + margin
   # The plane under the cloth, a rectangle as wide as the cloth's path and a margin, drawn behind everything: the
   # view looks down on its upper side, where the cloth is.
@@ -127,7 +136,7 @@ do for [s = 1:3] {
   set yrange [(y0 + y1 - L) / 2:(y0 + y1 + L) / 2]
   set zrange [z0:z1]
   tic = L < 0.6 ? 0.1 : 0.2
-  set xtics tic; set ytics tic; set ztics tic
+  set xtics tic offset 0, -0.4; set ytics tic offset 0.6, 0; set ztics tic
 
   # Over the plane the cloth is a shaded surface, its quadrangles painted far to near. Over the sphere that order
   # fails: it sorts whole quadrangles by their mean depth, and a sheet 5 mm above a sphere of 8 cm quadrangles
@@ -142,11 +151,11 @@ do for [s = 1:3] {
   set terminal gif animate delay 8 loop 0 optimize size 480,420 font "Sans,9"
   set output plots.'/ch11_'.scene.'.gif'
   do for [k = 0:frames - 1] {
-    set title sprintf("%s: frame %d of %d", word(titles, s), k, frames - 1)
+    set title sprintf("%s: frame %d of %d", title, k, frames - 1)
     if (strlen(sphere) > 0) {
       splot $sphere using 1:2:3 with lines lt 13, file index k using 3:4:5 with lines lt 11
     } else {
-      splot file index k using 3:4:5 with pm3d fillcolor rgb "#c0392b"
+      splot file index k using 3:4:5 with pm3d fillcolor linetype 11
     }
   }
   set output
@@ -156,9 +165,9 @@ do for [s = 1:3] {
     set view 72, 35
     set terminal pngcairo size 900,640 enhanced font "Sans,11"
     set output plots.'/ch11_drape.png'
-    set title sprintf("The 20 x 20 sheet at rest on the sphere (r = %g m) and the ground, its last frame", r)
+    set title sprintf("The %d x %d sheet at rest on the sphere (r = %g m), its last frame", M, N, r)
     splot $sphere using 1:2:3 with lines lt 13 lw 0.8, file index (frames - 1) using 3:4:5 with lines lt 11 lw 1.2
     set output
-    set view 62, 32
+    set view 62, 32, 1.15
   }
 }
