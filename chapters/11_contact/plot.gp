@@ -148,7 +148,9 @@ do for [s = 1:3] {
     unset hidden3d
     set pm3d depthorder lighting primary 0.5 specular 0
   }
-  set terminal gif animate delay 8 loop 0 optimize size 480,420 font "Sans,9"
+  # Without `optimize`: with it each frame keeps the first frame's colours, and the shades of the fallen cloth
+  # come out black.
+  set terminal gif animate delay 8 loop 0 size 480,420 font "Sans,9"
   set output plots.'/ch11_'.scene.'.gif'
   do for [k = 0:frames - 1] {
     set title sprintf("%s: frame %d of %d", title, k, frames - 1)

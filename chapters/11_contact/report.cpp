@@ -32,7 +32,7 @@ cloth::OutputList report_outputs() {
           {"sphere.md", fragment, "every family on the small drape: deepest penetration, kinetic energy at T"},
           {"sphere_energy.dat", figure, "kinetic energy over its peak, one block per method"},
           {"sphere_frames.dat", figure, "frames of the 20 x 20 sheet draping over the sphere"},
-          {"sphere_geometry.txt", figure, "the sphere and the ground the animation draws, in run.txt's lines"},
+          {"sphere_geometry.txt", figure, "the sphere and the ground the animation and the drape's still draw"},
           {"sdirk2_rest.md", fragment, "SDIRK2 on the drape at three steps: energy left, the fastest velocity and its motion"},
           {"sdirk2_stages.md", fragment, "SDIRK2 at 10 ms, corrected after the step or filtered in each stage"},
           {"sphere_rest.md", fragment, "the scene's drape at 10 s: kinetic energy over its peak, deepest penetration"},
