@@ -51,7 +51,7 @@ set xlabel "x [m]"
 set ylabel "y [m]" offset 2, -0.5
 set zlabel "z [m]" rotate by 90
 set tics textcolor rgb "#606060"
-# The cloth red, the obstacles in greys. With hidden3d each surface's underside takes the next linetype: the
+# The cloth red, the obstacles in muted greys. With hidden3d each surface's underside takes the next linetype: the
 # cloth's blue where the view shows it, the sphere's the same as its outside.
 set linetype 11 lc rgb "#c0392b"
 set linetype 12 lc rgb "#1f618d"
@@ -66,22 +66,20 @@ sphere_meridians = 24
 sphere_parallels = 12
 margin = 0.05
 
-# Reads the file named by `geometry`: key = value lines; a scene without an obstacle leaves its variable NaN or "".
-read_geometry = 'ground_z = NaN; incline_angle = NaN; sphere = ""; \
-  set datafile separator "="; \
-  stats geometry using (key = word(strcol(1), 1), \
-    key eq "ground_z" ? (ground_z = real(strcol(2))) : \
-    key eq "incline_angle" ? (incline_angle = real(strcol(2))) : \
-    key eq "sphere" ? (sphere = strcol(2)) : 0, 0) nooutput; \
-  set datafile separator whitespace'
-
 scenes = "incline sphere fold"
 do for [s = 1:3] {
   scene = word(scenes, s)
   file = data.'/'.scene.'_frames.dat'
   geometry = data.'/'.scene.'_geometry.txt'
   set autoscale x; set autoscale y; set autoscale z  # stats keeps to the ranges set, so clear the last scene's first
-  eval read_geometry
+  # The geometry file's key = value lines; a scene without an obstacle leaves its variable NaN or "".
+  ground_z = NaN; incline_angle = NaN; sphere = ""
+  set datafile separator "="
+  stats geometry using (key = word(strcol(1), 1), \
+                        key eq "ground_z" ? (ground_z = real(strcol(2))) : \
+                        key eq "incline_angle" ? (incline_angle = real(strcol(2))) : \
+                        key eq "sphere" ? (sphere = strcol(2)) : 0, 0) nooutput
+  set datafile separator whitespace
   # The cloth's extent over all frames; stats of one column keeps to the x range, so no range is set before the last.
   stats file using 3 nooutput
   x0 = STATS_min; x1 = STATS_max; frames = STATS_blocks
