@@ -7,7 +7,6 @@
 #include "integrators/contact_stepper.hpp"
 #include "integrators/method_registry.hpp"
 #include "program/fragment.hpp"
-#include "program/output.hpp"
 #include "program/timing.hpp"
 
 #include <array>
@@ -72,7 +71,7 @@ void fold_study(const Study& study) {
                  format_fixed(1000 * (work.seconds - work.sweep_seconds) / steps / forces, 2),
                  format_fixed(1000 * work.sweep_seconds / steps / forces, 2)});
   write_table_fragment(study.dir + "/fold.md", table, study.command);
-  write_frames(study.dir + "/fold_frames.dat", grid, run.frames);
+  write_scene_frames(study, "fold", b, run.frames);
 }
 
 // skin.md: the fold of fold.md run again with each skin s of the kept list (ContactModel::skin): how often a step
