@@ -189,8 +189,9 @@ std::vector<ProgramOutputs> every_output() {
       {"ch11_contact", {"--scene", "fold", "--grid", "6x20"}, run_files},
       {"ch11_contact",
        {"--report-runs", "--quick"},
-       {"incline.md", "incline.dat", "incline_frames.dat", "sphere.md", "sphere_energy.dat", "sphere_frames.dat",
-        "sphere_rest.md", "fold.md", "fold_frames.dat", "hash.md", "edge_crossing.md"}},
+       {"incline.md", "incline.dat", "incline_frames.dat", "incline_geometry.txt", "sphere.md", "sphere_energy.dat",
+        "sphere_frames.dat", "sphere_geometry.txt", "sphere_rest.md", "fold.md", "fold_frames.dat",
+        "fold_geometry.txt", "hash.md", "edge_crossing.md"}},
 #endif
 #ifdef CLOTH_HAVE_CH12_BENDING
       {"ch12_bending", {}, {"final.dat", "run.txt"}},
@@ -250,7 +251,7 @@ constexpr std::size_t folder_cases_ch10_cloth = 2 * (4 + 1);
 constexpr std::size_t folder_cases_ch10_cloth = 0;
 #endif
 #ifdef CLOTH_HAVE_CH11_CONTACT
-constexpr std::size_t folder_cases_ch11_contact = 3 * (4 + 1) + 11 + 1;
+constexpr std::size_t folder_cases_ch11_contact = 3 * (4 + 1) + 14 + 1;
 #else
 constexpr std::size_t folder_cases_ch11_contact = 0;
 #endif

@@ -85,7 +85,7 @@ void incline_study(const Study& study) {
         curves += format_number(f.t, 6) + " " + format_number(mean_downhill(f.positions, b.scene->initial_positions(), theta), 8) +
                   " " + format_number(0.5 * a * f.t * f.t, 8) + "\n";
       curves += "\n\n";
-      if (degrees == 30.0) write_frames(study.dir + "/incline_frames.dat", b.params.grid, run.frames);
+      if (degrees == 30.0) write_scene_frames(study, "incline", b, run.frames);
     }
   }
   write_text(study.dir + "/incline.dat", curves);
@@ -130,7 +130,7 @@ void sphere_study(const Study& study) {
                       "kinetic energy at T = 10 s: " + format_number(run.kinetic.back() / peak, 2) +
                           " of its peak; deepest after any step: " +
                           format_number(std::max(0.0, run.deepest) / b.model.thickness * 100, 2) + " % of the thickness");
-  write_frames(study.dir + "/sphere_frames.dat", b.params.grid, run.frames);
+  write_scene_frames(study, "sphere", b, run.frames);
 }
 // [sphere_study]
 

@@ -28,16 +28,20 @@ cloth::OutputList report_outputs() {
   return {{"incline.md", fragment, "the incline against g (sin - mu_k cos), below and beyond the cone"},
           {"incline.dat", figure, "the mean displacement down the slope against the closed form"},
           {"incline_frames.dat", figure, "frames of the sheet sliding down the 30-degree incline"},
+          {"incline_geometry.txt", figure, "the incline the animation draws, in run.txt's lines"},
           {"sphere.md", fragment, "every family on the small drape: deepest penetration, kinetic energy at T"},
           {"sphere_energy.dat", figure, "kinetic energy over its peak, one block per method"},
           {"sphere_frames.dat", figure, "frames of the 20 x 20 sheet draping over the sphere"},
+          {"sphere_geometry.txt", figure, "the sphere and the ground the animation and the drape's still draw"},
           {"sdirk2_rest.md", fragment, "SDIRK2 on the drape at three steps: energy left, the fastest velocity and its motion"},
           {"sdirk2_stages.md", fragment, "SDIRK2 at 10 ms, corrected after the step or filtered in each stage"},
           {"sphere_rest.md", fragment, "the scene's drape at 10 s: kinetic energy over its peak, deepest penetration"},
           {"fold.md", fragment, "the folding strip: closest pair, passes, hash builds, cost against the forces"},
           {"fold_frames.dat", figure, "frames of the strip folding"},
+          {"fold_geometry.txt", figure, "the ground the animation draws, in run.txt's lines"},
           {"skin.md", fragment, "the fold with each skin of the kept list: builds, candidates, cost"},
           {"hash.md", fragment, "a step's self-collision against a force evaluation, 30 x 100 to 30 x 800"},
+          {"adaptive_skin.md", fragment, "the fold's candidates refreshed particle by particle: queries and distances"},
           {"edge_crossing.md", fragment, "whether two crossing edges pass through each other, by spacing"}};
 }
 
@@ -55,6 +59,7 @@ int run_report(int argc, char** argv, const cloth::Options& opt) {
   fold_study(study);
   skin_study(study);
   hash_benchmark(study);
+  adaptive_skin_study(study);
   edge_crossing_study(study);
   return 0;
 }

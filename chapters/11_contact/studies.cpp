@@ -1,6 +1,7 @@
 // The stepping loop of Chapter 11's studies.
 #include "studies.hpp"
 
+#include "program/output.hpp"
 #include "program/timing.hpp"
 
 #include <cmath>
@@ -26,8 +27,7 @@ BuiltScene build_scene(SceneKind kind, const ContactFlags& flags, const Grid* gr
   p.pins = PinSet::none;
   p.initial_velocity_z = 0;
   if (grid) p.grid = *grid;
-  KeyValues unused;
-  b.model = place_scene(kind, flags, p, unused);
+  b.model = place_scene(kind, flags, p, b.geometry);
   b.scene = std::make_unique<Scene>(p);
   b.field = std::make_unique<ForceField>(*b.scene);
   return b;
@@ -58,6 +58,12 @@ SteppedRun step_run(Stepper& stepper, const BuiltScene& built, double h, double 
   }
   run.seconds = thread_cpu_seconds() - start;
   return run;
+}
+
+void write_scene_frames(const Study& study, const std::string& scene, const BuiltScene& built,
+                        const std::vector<Frame>& frames) {
+  write_frames(study.dir + "/" + scene + "_frames.dat", built.params.grid, frames);
+  write_key_values(study.dir + "/" + scene + "_geometry.txt", built.geometry);
 }
 
 }  // namespace ch11

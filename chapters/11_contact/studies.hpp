@@ -28,6 +28,7 @@ struct BuiltScene {
   cloth::ContactModel model;
   std::unique_ptr<cloth::Scene> scene;
   std::unique_ptr<cloth::ForceField> field;
+  cloth::KeyValues geometry;  ///< run.txt's lines of the obstacles (place_scene), for the animations to draw them
 };
 [[nodiscard]] BuiltScene build_scene(SceneKind kind, const ContactFlags& flags, const cloth::Grid* grid = nullptr);
 
@@ -48,6 +49,11 @@ struct SteppedRun {
 SteppedRun step_run(cloth::Stepper& stepper, const BuiltScene& built, double h, double T, int frames,
                     const std::function<void(const cloth::Vector&)>& after_step = {});
 
+/// Writes the frames of a run of `built` as `scene`_frames.dat and, beside them, the obstacles they meet as
+/// `scene`_geometry.txt, in run.txt's lines (`ground_z = z`, `sphere = cx cy cz r`, `incline_angle = deg`, ...).
+void write_scene_frames(const Study& study, const std::string& scene, const BuiltScene& built,
+                        const std::vector<cloth::Frame>& frames);
+
 void incline_study(const Study& study);
 void sphere_study(const Study& study);
 void sdirk2_rest_study(const Study& study);
@@ -55,6 +61,7 @@ void sdirk2_stages_study(const Study& study);
 void fold_study(const Study& study);
 void skin_study(const Study& study);
 void hash_benchmark(const Study& study);
+void adaptive_skin_study(const Study& study);
 void edge_crossing_study(const Study& study);
 
 }  // namespace ch11
