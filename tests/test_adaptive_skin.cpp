@@ -7,6 +7,8 @@
 #include "integrators/method_registry.hpp"
 #include "model/fabric.hpp"
 
+#include "folding_strip.hpp"
+
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
@@ -86,22 +88,9 @@ TEST_CASE("random walks: the list with a skin per particle holds every contact a
 }
 
 TEST_CASE("a folding strip: the list with a skin per particle holds every contact, checked every tenth step") {
-  SceneParams p;
-  p.grid = Grid{10, 40, 0.01};
-  p.mass = particle_mass(0.2, p.grid.d);
-  p.stiffness = 20;
-  p.damping = 0.002;
-  p.pins = PinSet::none;
-  p.initial_velocity_z = 0;
-  p.orientation = Eigen::AngleAxisd(88 * std::numbers::pi / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  p.origin = Eigen::Vector3d(0, 0, delta);
-  const Scene scene(p);
+  const Scene scene(cloth_test::standing_strip(delta));
   ForceField field(scene);
-  ContactModel model;
-  model.obstacles.emplace_back(HalfSpace{});
-  model.thickness = delta;
-  model.friction = {0.3, 0.2};
-  model.self_collision = true;
+  const ContactModel model = cloth_test::ground_and_self(delta);
   ContactStepper stepper(make_stepper("symplectic_euler", field), model);
   const Eigen::VectorXd rest = scene.initial_positions();
   AdaptiveSkinList list(rest, delta, 0.5 * delta, 0.25 * delta, false);

@@ -13,6 +13,8 @@
 #include "integrators/method_registry.hpp"
 #include "model/fabric.hpp"
 
+#include "folding_strip.hpp"
+
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
@@ -27,29 +29,8 @@ namespace {
 
 constexpr double thickness = 0.01;
 
-// Chapter 11's strip at 10 x 40 particles: 1 cm spacing, 0.2 kg/m^2, K = 20 N/m, D = 0.002 N s/m, standing on the
-// ground 2 degrees off the vertical, from rest.
-SceneParams standing_strip() {
-  SceneParams p;
-  p.grid = Grid{10, 40, 0.01};
-  p.mass = particle_mass(0.2, p.grid.d);
-  p.stiffness = 20;
-  p.damping = 0.002;
-  p.pins = PinSet::none;
-  p.initial_velocity_z = 0;
-  p.orientation = Eigen::AngleAxisd(88 * std::numbers::pi / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  p.origin = Eigen::Vector3d(0, 0, thickness);
-  return p;
-}
-
-ContactModel ground_and_self() {
-  ContactModel model;
-  model.obstacles.emplace_back(HalfSpace{});
-  model.thickness = thickness;
-  model.friction = {0.3, 0.2};
-  model.self_collision = true;
-  return model;
-}
+SceneParams standing_strip() { return cloth_test::standing_strip(thickness); }
+ContactModel ground_and_self() { return cloth_test::ground_and_self(thickness); }
 
 }  // namespace
 
