@@ -42,6 +42,7 @@ cloth::OutputList report_outputs() {
           {"skin.md", fragment, "the fold with each skin of the kept list: builds, candidates, cost"},
           {"hash.md", fragment, "a step's self-collision against a force evaluation, 30 x 100 to 30 x 800"},
           {"adaptive_skin.md", fragment, "the fold's candidates refreshed particle by particle: queries and distances"},
+          {"patch_hierarchy.md", fragment, "the distances a refitted hierarchy of mesh patches tests per step on the fold"},
           {"edge_crossing.md", fragment, "whether two crossing edges pass through each other, by spacing"}};
 }
 
@@ -60,6 +61,7 @@ int run_report(int argc, char** argv, const cloth::Options& opt) {
   skin_study(study);
   hash_benchmark(study);
   adaptive_skin_study(study);
+  patch_hierarchy_study(study);
   edge_crossing_study(study);
   return 0;
 }

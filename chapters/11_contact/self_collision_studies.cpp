@@ -26,7 +26,7 @@ Vector accordion(const Grid& grid, int rows, double thickness) {
   for (int j = 0; j < grid.N; ++j) {
     const int layer = j / rows, along = layer % 2 == 0 ? j % rows : rows - 1 - j % rows;
     for (int i = 0; i < grid.M; ++i)
-      x.segment<3>(3 * (j * grid.M + i)) = Eigen::Vector3d(i * grid.d, along * grid.d, (1 + 1.05 * layer) * thickness);
+      x.segment<3>(3 * grid.particle(i, j)) = Eigen::Vector3d(i * grid.d, along * grid.d, (1 + 1.05 * layer) * thickness);
   }
   return x;
 }

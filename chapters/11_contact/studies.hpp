@@ -62,6 +62,7 @@ void fold_study(const Study& study);
 void skin_study(const Study& study);
 void hash_benchmark(const Study& study);
 void adaptive_skin_study(const Study& study);
+void patch_hierarchy_study(const Study& study);
 void edge_crossing_study(const Study& study);
 
 }  // namespace ch11
