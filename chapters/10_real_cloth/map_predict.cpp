@@ -142,7 +142,7 @@ MarkdownTable validation_table(const std::vector<MeasuredPart>& parts) {
                    level_name(level, p.motion), column_title(column),
                    prediction_text(c, finer->part.n, predicted).substr(12),  // without "*predicted* "
                    format("%s: %.3g s", program_text(*measured).c_str(), measured->seconds),
-                   format("%.2f", measured->seconds / predicted)});
+                   format("%#.3g", measured->seconds / predicted)});  // three figures: 0.0072 is not 0.01
       }
     }
   }
