@@ -31,10 +31,12 @@ set title "A 30 x 100 strip folding onto itself (1 cm spacing and thickness), se
 set xlabel "y [m]"
 set ylabel "z [m]"
 set size ratio -1
-set key top right
+# The key beside the graph: inside, the standing strip runs through any corner. Its markers are drawn larger than
+# the particles' so that their colours can be read.
+set key at graph 1.05, 1 left top Left reverse
 set xtics 0.1
-plot for [k = 0:30:10] data.'/fold_frames.dat' index k using 4:5 with points pt 7 ps 0.25 \
-     title sprintf("t = %.2f s", k / 30.0)
+plot for [k = 0:30:10] data.'/fold_frames.dat' index k using 4:5 with points pt 7 ps 0.25 lt (k / 10 + 1) notitle, \
+     for [k = 0:30:10] keyentry with points pt 7 ps 1 lt (k / 10 + 1) title sprintf("t = %.2f s", k / 30.0)
 set size noratio
 
 # ---- one animation per scene: the cloth and what it touches, at every kept frame ----
