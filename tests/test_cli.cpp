@@ -463,12 +463,48 @@ TEST_CASE("ch11_contact: bad input gives status 2, one line naming the flag, not
                      {{"--method", "implicit_euler", "--linear-solver", "ldlt"}, {"--linear-solver", "expected cg"}},
                      {{"--method", "implicit_euler", "--jacobian", "exact"}, {"--jacobian", "expected definite"}},
                      {{"--method", "rk4", "--newton", "full"}, {"--newton", "rk4 has no Newton iteration"}},
+                     {{"--method", "implicit_euler", "--newton", "one", "--newton-max-iter", "5"},
+                      {"--newton-max-iter", "exactly one iteration"}},
                      {{"--scene", "fold", "--sphere-radius", "0"}, {"--sphere-radius", "> 0"}},
                      {{"--scene", "fold", "--skin", "1.5"}, {"--skin", "(0, 1]"}},
                      {{"--quick"}, {"--quick", "--report-runs"}},
                      {{"--scene", "fold", "--method", "implicit_euler"}, {"--method implicit_euler", "self-collision"}},
                      {{"--report-runs", "--scene", "fold"}, {"--scene", "--quick and --out only"}},
                  });
+}
+
+TEST_CASE("ch11_contact: --help gives implicit_euler's Newton default, one iteration, and a run takes it") {
+  const ProgramFolder folder;
+  const ProgramRun help = folder.run("ch11_contact", {"--help"});
+  REQUIRE(help.status == 0);
+  const auto at = help.out.find("\n  --newton ");
+  REQUIRE(at != std::string::npos);
+  const std::string line = help.out.substr(at + 1, help.out.find('\n', at + 1) - at - 1);
+  CAPTURE(line);
+  CHECK(line.find("full Newton (default but for implicit_euler)") != std::string::npos);
+  CHECK(line.find("single linearised step (implicit_euler's default)") != std::string::npos);
+#ifdef CLOTH_HAVE_CH10_CLOTH
+  // A program without an exception keeps the plain default.
+  const ProgramRun cloth_help = folder.run("ch10_cloth", {"--help"});
+  CHECK(cloth_help.out.find("full Newton (default), modified") != std::string::npos);
+#endif
+  // Without --newton: one iteration per step, also with --linear-solver cg (the only solver it takes), and full
+  // Newton when a tolerance asks for more.
+  const auto newton_of = [&](const std::vector<std::string>& flags, const std::string& out) {
+    std::vector<std::string> args = {"--method", "implicit_euler", "--t-end", "0.02", "--out", out};
+    args.insert(args.end(), flags.begin(), flags.end());
+    const ProgramRun run = folder.run("ch11_contact", args);
+    CAPTURE(run.err);
+    REQUIRE(run.status == 0);
+    const std::string txt = read_text(folder.cwd() / out / "run.txt");
+    const auto key = txt.find("\nnewton = ");
+    REQUIRE(key != std::string::npos);
+    return txt.substr(key + 10, txt.find('\n', key + 1) - key - 10);
+  };
+  CHECK(newton_of({}, "plain") == "one");
+  CHECK(newton_of({"--linear-solver", "cg"}, "cg") == "one");
+  CHECK(newton_of({"--jacobian", "definite"}, "definite") == "one");
+  CHECK(newton_of({"--newton-tol", "1e-6"}, "tol") == "full");
 }
 
 TEST_CASE("ch11_contact: run.txt records the geometry of each scene, and the frames stay out of the obstacles") {

@@ -9,6 +9,8 @@
 #include "integrators/simulate.hpp"
 #include "model/fabric.hpp"
 
+#include "flat_sheet.hpp"
+
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
@@ -123,16 +125,7 @@ TEST_CASE("frictionless contact stops the normal velocity only: tangential motio
 // it to rest where it was; explicit Euler does not move it, so the contact is seen a step late and its velocity
 // alternates between -h g and 0 while it stays on the shell.
 TEST_CASE("a particle resting on the ground: symplectic Euler's step corrected to rest, explicit Euler's a step late") {
-  SceneParams p;
-  p.grid = Grid{2, 2, 0.05};
-  p.mass = 5e-4;
-  p.stiffness = 50;
-  p.damping = 0.1;
-  p.pins = PinSet::none;
-  p.initial_velocity_z = 0;
-  p.gravity = g;
-  p.origin = Eigen::Vector3d(0, 0, thickness);  // a flat sheet on the shell, its springs at rest
-  const Scene scene(p);
+  const Scene scene(cloth_test::flat_sheet(thickness, 0));  // at rest on the shell, under the default gravity g
   const ContactModel ground = incline(0.0, 0.3, 0.2);
   const double h = 1e-3;
   for (const char* method : {"symplectic_euler", "explicit_euler"}) {

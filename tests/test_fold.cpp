@@ -13,6 +13,7 @@
 #include "integrators/method_registry.hpp"
 #include "model/fabric.hpp"
 
+#include "flat_sheet.hpp"
 #include "folding_strip.hpp"
 
 #include <doctest/doctest.h>
@@ -202,20 +203,12 @@ TEST_CASE("SDIRK2 filtered in each stage: the drape at 10 ms keeps under a tenth
 // sheet stopped against the ground in the first stage starts the second moving away at sqrt(2) u, is not
 // constrained there, and ends the step at sqrt(2) u - gamma h g; implicit Euler stops it.
 TEST_CASE("SDIRK2 filtered in each stage: a flat sheet landing at u leaves the ground at sqrt(2) u - gamma h g") {
-  SceneParams p;
-  p.grid = Grid{2, 2, 0.05};
-  p.mass = 5e-4;
-  p.stiffness = 50;
-  p.damping = 0.1;
-  p.pins = PinSet::none;
   const double u = 1, h = 1e-2, g = 9.81, gamma = 1 - 1 / std::sqrt(2.0);
-  p.initial_velocity_z = -u;
   ContactModel model;
   model.obstacles.emplace_back(HalfSpace{});
   model.thickness = 0.005;
   model.friction = {0.3, 0.2};
-  p.origin = Eigen::Vector3d(0, 0, model.thickness);  // touching at t = 0
-  const Scene scene(p);
+  const Scene scene(cloth_test::flat_sheet(model.thickness, -u));  // touching at t = 0, landing at u
   ForceField field(scene);
   ContactDirk sdirk2(field, builtin_implicit_tableau("sdirk2"), model);
   ContactImplicitEuler euler(field, model);

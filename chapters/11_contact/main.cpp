@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
   cli.add_switch("--report-runs", "run the chapter's studies into --out (figures' data and the page's tables)",
                  [&] { report = true; });
   add_report_flags(cli);
-  newton.add_to(cli);
+  newton.add_to(cli, NewtonVariant::full, ch11::filtered_newton_default);
   iterations.add_to(cli);
   cli.declare_outputs([&](const Options&) { return report ? report_outputs() : run_output_specs(); });
   return run_program(cli.program(), [&] {

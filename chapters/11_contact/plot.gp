@@ -31,10 +31,12 @@ set title "A 30 x 100 strip folding onto itself (1 cm spacing and thickness), se
 set xlabel "y [m]"
 set ylabel "z [m]"
 set size ratio -1
-set key top right
+# The key beside the graph: inside, the standing strip runs through any corner. Its markers are drawn larger than
+# the particles' so that their colours can be read.
+set key at graph 1.05, 1 left top Left reverse
 set xtics 0.1
-plot for [k = 0:30:10] data.'/fold_frames.dat' index k using 4:5 with points pt 7 ps 0.25 \
-     title sprintf("t = %.2f s", k / 30.0)
+plot for [k = 0:30:10] data.'/fold_frames.dat' index k using 4:5 with points pt 7 ps 0.25 lt (k / 10 + 1) notitle, \
+     for [k = 0:30:10] keyentry with points pt 7 ps 1 lt (k / 10 + 1) title sprintf("t = %.2f s", k / 30.0)
 set size noratio
 
 # ---- one animation per scene: the cloth and what it touches, at every kept frame ----
@@ -54,7 +56,8 @@ set tics textcolor rgb "#606060"
 # The cloth red, the obstacles in muted greys. With hidden3d each surface's underside takes the next linetype: the
 # cloth's blue where the view shows it, the sphere's the same as its outside.
 set linetype 11 lc rgb "#c0392b"
-set linetype 12 lc rgb "#1f618d"
+underside_colour = "#1f618d"
+set linetype 12 lc rgb underside_colour
 set linetype 13 lc rgb "#7f98ad"
 set linetype 14 lc rgb "#7f98ad"
 plane_colour = "#d9d4c7"
@@ -102,16 +105,26 @@ do for [s = 1:3] {
     # highest to its lowest point along the slope s = x / cos.
     c = cos(incline_angle * pi / 180); t = sin(incline_angle * pi / 180)
     s0 = x0 / c - margin; s1 = x1 / c + margin
-    set object 1 polygon from s0 * c, y0, -s0 * t to s1 * c, y0, -s1 * t to s1 * c, y1, -s1 * t \
+    set object 2 polygon from s0 * c, y0, -s0 * t to s1 * c, y0, -s1 * t to s1 * c, y1, -s1 * t \
       to s0 * c, y1, -s0 * t to s0 * c, y0, -s0 * t
     x0 = s0 * c; x1 = s1 * c; z0 = -s1 * t; z1 = z1 + margin
   } else {
     x0 = x0 - margin; x1 = x1 + margin
-    set object 1 polygon from x0, y0, ground_z to x1, y0, ground_z to x1, y1, ground_z to x0, y1, ground_z \
+    set object 2 polygon from x0, y0, ground_z to x1, y0, ground_z to x1, y1, ground_z to x0, y1, ground_z \
       to x0, y0, ground_z
     z0 = ground_z; z1 = z1 + margin
   }
-  set object 1 behind fillcolor rgb plane_colour fillstyle solid 1 border lc rgb "#a09a8a"
+  set object 2 behind fillcolor rgb plane_colour fillstyle solid 1 border lc rgb "#a09a8a"
+  # Over the sphere, a square of the cloth's underside colour on the ground, drawn before the plane covers it: the
+  # first frame does not show the underside, and an animation written with `optimize` (below) has only the colours
+  # of its first frame.
+  if (strlen(sphere) > 0) {
+    set object 1 polygon from x0 + margin, y0 + margin, ground_z to x0 + 2 * margin, y0 + margin, ground_z \
+      to x0 + 2 * margin, y0 + 2 * margin, ground_z to x0 + margin, y0 + margin, ground_z
+    set object 1 behind fillcolor rgb underside_colour fillstyle solid 1 noborder
+  } else {
+    unset object 1
+  }
   # The sphere's mesh, once per scene: longitude u, latitude v.
   set print $sphere
   if (strlen(sphere) > 0) {
@@ -146,9 +159,16 @@ do for [s = 1:3] {
     unset hidden3d
     set pm3d depthorder lighting primary 0.5 specular 0
   }
-  # Without `optimize`: with it each frame keeps the first frame's colours, and the shades of the fallen cloth
-  # come out black.
-  set terminal gif animate delay 8 loop 0 size 480,420 font "Sans,9"
+  # With `optimize` a frame is stored as its change from the one before, a third to a half of the size; but gnuplot
+  # gives each frame the colours it draws, in the order it draws them, and the file keeps the first frame's, so a
+  # colour that first appears later shows as another. On the incline and over the sphere (with the underside's
+  # square above) every frame draws only the first frame's colours, and the frames come out pixel for pixel as
+  # without it. The folding strip's lit shades change from frame to frame: its frames are stored whole.
+  if (scene eq "fold") {
+    set terminal gif animate delay 8 loop 0 size 480,420 font "Sans,9"
+  } else {
+    set terminal gif animate optimize delay 8 loop 0 size 480,420 font "Sans,9"
+  }
   set output plots.'/ch11_'.scene.'.gif'
   do for [k = 0:frames - 1] {
     set title sprintf("%s: frame %d of %d", title, k, frames - 1)

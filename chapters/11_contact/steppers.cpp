@@ -30,9 +30,15 @@ std::unique_ptr<Stepper> filtered_implicit_euler(ForceField& field, const Contac
                      "expected cg");
   if (newton.jacobian() && *newton.jacobian() != StiffnessTreatment::definite)
     throw InputError("--jacobian: filtered conjugate gradients need the definite matrix: expected definite");
-  // Without --newton, Baraff and Witkin's single iteration.
-  const bool iterate = s.variant == NewtonVariant::full && !newton.first_given().empty() &&
-                       !(s.max_iterations == 1);
+  // Without --newton, Baraff and Witkin's single iteration, unless a tolerance or an iteration cap asks for more
+  // (the other flags choose nothing that one iteration does not have).
+  const bool asks_for_more = newton.given("--newton-tol") || newton.given("--newton-max-iter");
+  const NewtonVariant variant = newton.given("--newton") ? s.variant
+                                : asks_for_more          ? NewtonVariant::full
+                                                         : filtered_newton_default.variant;
+  if (variant == NewtonVariant::one && newton.given("--newton-max-iter") && s.max_iterations != 1)
+    throw InputError("--newton-max-iter: --newton one takes exactly one iteration; leave --newton-max-iter out");
+  const bool iterate = variant == NewtonVariant::full && s.max_iterations != 1;
   FilteredNewton settings;
   if (iterate) settings = {s.max_iterations, s.tolerance};
   lines.emplace_back("contact", "filtered_cg");

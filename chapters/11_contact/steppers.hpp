@@ -11,6 +11,10 @@
 
 namespace ch11 {
 
+/// implicit_euler's Newton iteration without `--newton`: Baraff and Witkin's single iteration, unless `--newton-tol`
+/// or `--newton-max-iter` asks for more (then full). Every other implicit method takes the shared default, full.
+inline const cloth::NewtonFlags::MethodDefault filtered_newton_default{"implicit_euler", cloth::NewtonVariant::one};
+
 /// implicit_euler: Baraff and Witkin's filtered step (one iteration, or iterated to Newton's tolerance with
 /// `--newton full`; it does not take self-collision, and is refused for the fold); XPBD: contact as inequality
 /// constraints in its substeps; every other method (explicit, embedded and implicit Runge-Kutta, symplectic Euler,

@@ -37,14 +37,37 @@ void NewtonFlags::apply_defaults(const Defaults& defaults) {
   if (defaults.line_search && !given("--line-search")) newton_.line_search = *defaults.line_search;
 }
 
-void NewtonFlags::add_to(CommandLine& cli, NewtonVariant default_variant) {
+namespace {
+
+// `--newton`'s help: each variant, with whose default it is.
+std::string newton_help(NewtonVariant default_variant,
+                        const std::optional<NewtonFlags::MethodDefault>& method_default) {
+  const bool exception = method_default && method_default->variant != default_variant;
+  const auto whose = [&](NewtonVariant v) {
+    std::string w;
+    if (v == default_variant) {
+      w = "default";
+      if (exception) w.append(" but for ").append(method_default->method);
+    } else if (exception && v == method_default->variant) {
+      w.append(method_default->method).append("'s default");
+    }
+    return w;
+  };
+  std::string help = "full Newton";
+  if (const std::string w = whose(NewtonVariant::full); !w.empty()) help.append(" (").append(w).append(")");
+  help += ", modified (a factorization kept while it converges fast, Chapter 9";
+  if (const std::string w = whose(NewtonVariant::modified); !w.empty()) help.append("; ").append(w);
+  help += "), or one: Baraff & Witkin's single linearised step";
+  if (const std::string w = whose(NewtonVariant::one); !w.empty()) help.append(" (").append(w).append(")");
+  return help;
+}
+
+}  // namespace
+
+void NewtonFlags::add_to(CommandLine& cli, NewtonVariant default_variant,
+                         const std::optional<MethodDefault>& method_default) {
   newton_.variant = default_variant;
-  const bool full = default_variant == NewtonVariant::full, modified = default_variant == NewtonVariant::modified;
-  cli.add_value("--newton", newton_variants().accepted("|"),
-                std::string(full ? "full Newton (default)" : "full Newton") +
-                    ", modified (a factorization kept while it converges fast, Chapter 9" + (modified ? "; default" : "") +
-                    "), or one: Baraff & Witkin's single linearised step" +
-                    (!full && !modified ? " (default)" : ""),
+  cli.add_value("--newton", newton_variants().accepted("|"), newton_help(default_variant, method_default),
                 [this](const std::string& s) {
                   newton_.variant = newton_variants().parse(s);
                   note("--newton");

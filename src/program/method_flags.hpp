@@ -25,9 +25,17 @@ StiffnessTreatment default_treatment(LinearSolverKind solver, bool nonsymmetric)
 ///   const NewtonSettings s = newton.settings_for(Scene(params));  // after it: the default rule, validated
 class NewtonFlags {
  public:
+  /// A method whose variant without `--newton` is not the program's, which the program applies itself (Chapter
+  /// 11's implicit_euler takes Baraff and Witkin's single iteration): named in `--newton`'s help.
+  struct MethodDefault {
+    std::string method;
+    NewtonVariant variant;
+  };
   /// Adds `--newton`, `--linear-solver`, `--newton-tol`, `--newton-max-iter`, `--line-search` and `--jacobian`
-  /// to `cli`; without `--newton` the program runs `default_variant` (Chapter 9's fixed steps: modified).
-  void add_to(CommandLine& cli, NewtonVariant default_variant = NewtonVariant::full);
+  /// to `cli`; without `--newton` the program runs `default_variant` (Chapter 9's fixed steps: modified), and
+  /// `--help` says so, with `method_default`'s exception when it is given.
+  void add_to(CommandLine& cli, NewtonVariant default_variant = NewtonVariant::full,
+              const std::optional<MethodDefault>& method_default = std::nullopt);
 
   /// The settings the flags chose, the Newton matrix's treatment by default_treatment() unless `--jacobian` chose
   /// it. Throws InputError naming the flags when they contradict each other (`--newton one` with another
