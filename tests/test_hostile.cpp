@@ -248,7 +248,7 @@ constexpr std::size_t folder_cases_ch10_cloth = 2 * (4 + 1);
 constexpr std::size_t folder_cases_ch10_cloth = 0;
 #endif
 #ifdef CLOTH_HAVE_CH11_CONTACT
-constexpr std::size_t folder_cases_ch11_contact = 3 * (4 + 1) + 18 + 1;
+constexpr std::size_t folder_cases_ch11_contact = 3 * (4 + 1) + 19 + 1;
 #else
 constexpr std::size_t folder_cases_ch11_contact = 0;
 #endif
