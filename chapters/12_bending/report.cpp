@@ -39,7 +39,7 @@ CantileverParams test_strip(BendingModel model, double lambda, int cells) {
 // springs' bending energy is quartic in the angle, flat at the straight tip) and then stalls where a step's change
 // of the energy is below the energy's rounding and the line search can no longer tell a better shape from a worse
 // one: near 4e-7 weights at L/40, 3e-5 at L/80. What is left is the stiff springs' stretch: the tip at 30 weights
-// already agrees with the one at 3e-5 to eight digits (L/80), far below the tens of percent the table shows.
+// already agrees with the one at 3e-5 to one part in 1e7 (L/80), far below the tens of percent the table shows.
 CantileverRest measure(const CantileverParams& p) {
   throw_if_interrupted();
   Cantilever strip(p);
