@@ -1,7 +1,8 @@
 // Chapter 12's drape (--drape-runs): Chapter 10's curtain of fabric, released flat from its top edge, with and
 // without a bending term, by implicit Euler. What bending changes is measured by the sheet's RMS curvature (the
 // hinge energy of unit rigidity, kappa_rms = sqrt(2 E / A)) over time, its sharpest fold, and the middle
-// column's profile; what it costs, by the time of a force and a Newton-matrix evaluation beside the springs'.
+// column's profile; what it costs, by the time of a force and a Newton-matrix evaluation beside the springs', and
+// by the fill and time of the Newton matrix's factorization.
 #include "report.hpp"
 
 #include "base/format_number.hpp"
