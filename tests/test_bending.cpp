@@ -85,6 +85,27 @@ TEST_CASE("the closed-form Hessian of the dihedral angle equals its forward-mode
   }
 }
 
+TEST_CASE("the hinge energy's Hessian grad theta grad theta^T + theta d^2 theta is indefinite at every fold, "
+          "however small: four negative eigenvalues, the smallest -3.2 theta for a unit grid-line hinge") {
+  // The grid-line hinge of Chapter 12 (edge (0,0)-(1,0), apices at (1,1) and (0,-1)), each wing turned by theta/2.
+  // d^2 theta has eigenvalues of both signs (-3.24 and 3.24 when flat); the rank-one Gauss-Newton term lifts one
+  // direction only, so theta d^2 theta leaves negative ones at any theta != 0, not only once theta is large.
+  for (const double theta : {1e-3, 1e-2, 0.1}) {
+    CAPTURE(theta);
+    Vector12 x;
+    x << 0, 0, 0, 1, 0, 0, 1, std::cos(theta / 2), -std::sin(theta / 2), 0, -std::cos(theta / 2), -std::sin(theta / 2);
+    REQUIRE(hinge_angle(x) == doctest::Approx(theta).epsilon(1e-12));
+    const Vector12 g = hinge_angle_gradient(x);
+    const Matrix12 H = g * g.transpose() + theta * hinge_angle_hessian(x);
+    const Eigen::SelfAdjointEigenSolver<Matrix12> eigen(H);
+    int negative = 0;
+    for (int k = 0; k < 12; ++k) negative += eigen.eigenvalues()[k] < -1e-6 * theta ? 1 : 0;
+    CHECK(negative == 4);
+    CHECK(eigen.eigenvalues().minCoeff() / theta == doctest::Approx(-3.24).epsilon(0.05));
+    CHECK(eigen.eigenvalues().maxCoeff() == doctest::Approx(4.0).epsilon(0.01));  // |grad theta|^2: four unit rows
+  }
+}
+
 TEST_CASE("a hinge folded by a known angle: hinge_angle returns it, with the documented sign") {
   for (const double theta : {-2.5, -0.3, 1e-9, 0.7, 3.0}) {
     // Edge along x; apex x2 at +y in the plane z = 0, apex x3 turned by theta about the edge away from N1 = +z.

@@ -97,3 +97,13 @@ TEST_CASE("a fragment that cannot be written throws OutputError naming it, and l
   CHECK_THROWS_AS(cloth::write_text_fragment(path.string(), "1.99"), cloth::OutputError);
   CHECK(!fs::exists(path));
 }
+
+TEST_CASE("a measured column keeps its significant figures: 3.0019 to three figures is 3.00, not 3") {
+  CHECK(cloth::format_significant(3.001932, 3) == "3.00");
+  CHECK(cloth::format_significant(0.04776961, 3) == "0.0478");
+  CHECK(cloth::format_significant(-2.764605, 3) == "-2.76");
+  CHECK(cloth::format_significant(4e4, 3) == "4.00e+04");
+  CHECK(cloth::format_significant(1779.9e-3, 4) == "1.780");
+  CHECK(cloth::format_significant(100, 3) == "100");  // no point left dangling
+  CHECK(cloth::format_significant(0.000313, 3) == "0.000313");
+}

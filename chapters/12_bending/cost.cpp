@@ -19,12 +19,30 @@
 
 using namespace cloth;
 
-double median_seconds(const std::function<void()>& work) {
-  return time_runs(work, {.runs = 5, .repeat = 5}).median_cpu;
+namespace {
+
+// The median of `samples` with the smallest and largest beside it, each times `scale` to `decimals` decimals.
+std::string spread_cell(std::vector<double> samples, double scale, int decimals) {
+  std::sort(samples.begin(), samples.end());
+  std::string cell = format_fixed(scale * samples[samples.size() / 2], decimals);
+  cell += " (";
+  cell += format_fixed(scale * samples.front(), decimals);
+  cell += '-';
+  cell += format_fixed(scale * samples.back(), decimals);
+  cell += ')';
+  return cell;
+}
+
+}  // namespace
+
+std::string milliseconds_cell(const std::function<void()>& work) {
+  const Timing t = time_runs(work, {.runs = 5, .repeat = 5});
+  return spread_cell({t.fastest_cpu, t.median_cpu, t.slowest_cpu}, 1e3, 3);
 }
 
 // cost.md: the time of one force evaluation and one Hessian of the springs and of each bending model, on a
-// 60 x 60 sheet bent slightly at random (the median of 5 repetitions of 5 evaluations each).
+// 60 x 60 sheet bent slightly at random (the median of 5 repetitions of 5 evaluations each, with their spread);
+// then the dihedral angles' Hessians in closed form and by forward mode, timed alternately, and their ratio.
 void write_cost(const std::string& dir, const std::string& command) {
   SceneParams sp;
   sp.grid = Grid{60, 60, 0.01};
@@ -36,17 +54,18 @@ void write_cost(const std::string& dir, const std::string& command) {
   std::uniform_real_distribution<double> unit(-1, 1);
   Vector x = scene.initial_positions(), v = Vector::Zero(scene.dof_count()), f(scene.dof_count());
   for (Eigen::Index k = 0; k < x.size(); ++k) x[k] += 0.05 * sp.grid.d * unit(rng);
-  MarkdownTable table({"term (60 x 60 sheet)", "elements", "forces [ms]", "Hessian [ms]"}, "lrrr");
+  MarkdownTable table({"term (60 x 60 sheet)", "elements", "forces [ms]: median (fastest-slowest)",
+                       "Hessian [ms]: median (fastest-slowest)"}, "lrrr");
   SparseMatrix dfdx = springs.pattern(), dfdv = springs.pattern();
   table.add_row({"springs (structural, shear, flexion)", std::to_string(scene.springs().size()),
-                 format_fixed(1e3 * median_seconds([&] { springs.forces(x, v, f); }), 3),
-                 format_fixed(1e3 * median_seconds([&] { springs.jacobians(x, v, dfdx, dfdv); }), 3)});
+                 milliseconds_cell([&] { springs.forces(x, v, f); }),
+                 milliseconds_cell([&] { springs.jacobians(x, v, dfdx, dfdv); })});
   for (const BendingModel model : {BendingModel::hinge, BendingModel::quadratic}) {
     BendingEnergy bending(scene, model, 1e-5);
     bending.hessian(x, false);  // the pattern, once
     table.add_row({std::string(bending_models().name(model)) + " bending", std::to_string(bending.hinges().size()),
-                   format_fixed(1e3 * median_seconds([&] { bending.add_forces(x, f); }), 3),
-                   format_fixed(1e3 * median_seconds([&] { bending.hessian(x, false); }), 3)});
+                   milliseconds_cell([&] { bending.add_forces(x, f); }),
+                   milliseconds_cell([&] { bending.hessian(x, false); })});
   }
   // The dihedral angles' Hessians alone, in closed form and by forward-mode differentiation (model/bending.hpp).
   const BendingEnergy hinges(scene, BendingModel::hinge, 1e-5);
@@ -60,10 +79,21 @@ void write_cost(const std::string& dir, const std::string& command) {
     return sum;
   };
   volatile double sink = 0;  // keeps the unused sums from being optimised away
-  for (const auto& [name, hessian] : {std::pair{"d^2 theta of every hinge, closed form", &hinge_angle_hessian},
-                                      std::pair{"d^2 theta of every hinge, forward mode", &hinge_angle_hessian_forward_mode}})
-    table.add_row({name, std::to_string(hinges.hinges().size()), "",
-                   format_fixed(1e3 * median_seconds([&] { sink = all_angle_hessians(hessian).sum(); }), 3)});
+  // The two alternate, run by run, so that both see the same load of a shared machine; their ratio is taken per
+  // pair of neighbouring runs.
+  std::vector<double> closed, forward, ratio;
+  for (int run = 0; run < 7; ++run) {
+    throw_if_interrupted();
+    closed.push_back(time_runs([&] { sink = all_angle_hessians(&hinge_angle_hessian).sum(); },
+                               {.runs = 1, .repeat = 5}).median_cpu);
+    forward.push_back(time_runs([&] { sink = all_angle_hessians(&hinge_angle_hessian_forward_mode).sum(); },
+                                {.runs = 1, .repeat = 5}).median_cpu);
+    ratio.push_back(forward.back() / closed.back());
+  }
+  const std::string count = std::to_string(hinges.hinges().size());
+  table.add_row({"d^2 theta of every hinge, closed form", count, "", spread_cell(closed, 1e3, 3)});
+  table.add_row({"d^2 theta of every hinge, forward mode", count, "", spread_cell(forward, 1e3, 3)});
+  table.add_row({"forward mode / closed form, alternated runs", "", "", spread_cell(ratio, 1, 2)});
   write_table_fragment(dir + "/cost.md", table, command);
 }
 
@@ -103,9 +133,9 @@ void write_stable_step(const std::string& dir, const std::string& command) {
                                               y0, settings).magnitude;
     const double w2_bending = dominant_eigenvalue([&](const Vector& y, Vector& out) { out = (H * y) / sp.mass; },
                                               y0, settings).magnitude;
-    table.add_row({format_number(1e3 * d, 3), format_number(w2_springs, 3), format_number(w2_bending, 3),
-                   format_number(16 * B / (rho * d * d * d * d), 3), format_number(2 / std::sqrt(w2_springs), 3),
-                   format_number(2 / std::sqrt(w2_bending), 3)});
+    table.add_row({format_number(1e3 * d, 3), format_significant(w2_springs, 3), format_significant(w2_bending, 3),
+                   format_significant(16 * B / (rho * d * d * d * d), 3),
+                   format_significant(2 / std::sqrt(w2_springs), 3), format_significant(2 / std::sqrt(w2_bending), 3)});
   }
   write_table_fragment(dir + "/stable_step.md", table, command);
 }

@@ -1,10 +1,12 @@
 // Chapter 12's drape (--drape-runs): Chapter 10's curtain of fabric, released flat from its top edge, with and
 // without a bending term, by implicit Euler. What bending changes is measured by the sheet's RMS curvature (the
 // hinge energy of unit rigidity, kappa_rms = sqrt(2 E / A)) over time, its sharpest fold, and the middle
-// column's profile; what it costs, by the time of a force and a Newton-matrix evaluation beside the springs'.
+// column's profile; what it costs, by the time of a force and a Newton-matrix evaluation beside the springs', and
+// by the fill and time of the Newton matrix's factorization.
 #include "report.hpp"
 
 #include "base/format_number.hpp"
+#include "integrators/block_ldu.hpp"
 #include "integrators/method_registry.hpp"
 #include "model/bending.hpp"
 #include "program/fragment.hpp"
@@ -83,7 +85,7 @@ DrapeMeasure measure_drape(const Scene& scene, BendingEnergy& unit_hinges, const
 struct DrapeRun {
   std::vector<DrapeMeasure> history;  // every sample_every steps
   Vector early, x;                    // the free positions at drape_t_early and at the end
-  double seconds_per_step = 0, newton_per_step = 0;
+  double seconds_per_step = 0, newton_per_step = 0, factorizations_per_step = 0;
   int steps = 0;
 };
 
@@ -111,14 +113,18 @@ DrapeRun run_curtain(const DrapeCase& c) {
   }
   run.seconds_per_step = (thread_cpu_seconds() - start) / run.steps;
   run.newton_per_step = static_cast<double>(stepper->counters().newton_iterations) / run.steps;
+  run.factorizations_per_step = static_cast<double>(stepper->counters().factorizations) / run.steps;
   if (run.steps == steps) run.history.push_back(measure_drape(scene, unit_hinges, run.x, all));
   return run;
 }
 
-// drape_cost.md: one force evaluation and one Newton matrix of implicit Euler on the hanging curtain, springs
-// alone and with each bending term (the terms' own cost is the difference).
+// drape_cost.md: one force evaluation, one Newton matrix of implicit Euler and one factorization of it (the
+// block LDL^T that implicit Euler uses with the definite matrix) on the hanging curtain, springs alone and with
+// each bending term: the terms' own cost is the difference, and the factor's blocks say where the fill comes from.
 void write_drape_cost(const std::string& dir, const std::string& command, const Vector& hanging) {
-  MarkdownTable table({"curtain 20 x 20", "forces [ms]", "Newton matrix [ms]"}, "lrr");
+  MarkdownTable table({"curtain 20 x 20", "forces [ms]: median (fastest-slowest)",
+                       "Newton matrix [ms]: median (fastest-slowest)", "3x3 blocks: matrix (all), L (below the diagonal)",
+                       "one factorization [ms]: median (fastest-slowest)"}, "lrrrr");
   for (const DrapeCase& c : {drape_cases[0], drape_cases[2], drape_cases[3]}) {
     throw_if_interrupted();
     const Scene scene(curtain(c));
@@ -126,10 +132,15 @@ void write_drape_cost(const std::string& dir, const std::string& command, const 
     SparseMatrix A = field.pattern();
     const Vector v = Vector::Zero(scene.dof_count());
     Vector f(scene.dof_count());
-    table.add_row({c.name, format_fixed(1e3 * median_seconds([&] { field.forces(hanging, v, f); }), 3),
-                   format_fixed(1e3 * median_seconds([&] {
-                     field.newton_matrix(hanging, v, drape_dt, StiffnessTreatment::definite, A);
-                   }), 3)});
+    const std::string newton = milliseconds_cell(
+        [&] { field.newton_matrix(hanging, v, drape_dt, StiffnessTreatment::definite, A); });
+    BlockLDU factor;
+    factor.analyze(A, BlockLDU::Symmetry::symmetric);
+    std::string blocks = std::to_string(A.nonZeros() / 9);
+    blocks += ", ";
+    blocks += std::to_string(factor.factor_blocks());
+    table.add_row({c.name, milliseconds_cell([&] { field.forces(hanging, v, f); }), newton, blocks,
+                   milliseconds_cell([&] { factor.factorize(A); })});
   }
   write_table_fragment(dir + "/drape_cost.md", table, command);
 }
@@ -185,16 +196,17 @@ int drape_runs(const std::string& dir, const std::string& command) {
   for (const DrapeCase& c : drape_cases) runs.push_back(run_curtain(c));  // 1. the curtains
   write_drape_data(dir, runs);                                             // 2. the figure's data
   MarkdownTable table({"curtain", "kappa_rms at 0.5 s [1/m]", "kappa_rms at 2 s [1/m]", "sharpest fold at 2 s [deg]",
-                       "Newton iterations per step", "time per step [ms]"}, "lrrrrr");
+                       "Newton iterations per step", "factorizations per step", "time per step [ms]"}, "lrrrrrr");
   const auto at = [](const DrapeRun& r, std::size_t k) { return r.history[std::min(k, r.history.size() - 1)]; };
   const auto early = static_cast<std::size_t>(std::lround(drape_t_early / drape_dt / sample_every));
   for (std::size_t c = 0; c < runs.size(); ++c) {                          // 3. what each looks like
     const DrapeRun& r = runs[c];
     const bool done = r.history.size() == runs[0].history.size();
-    table.add_row({drape_cases[c].name, format_number(at(r, early).kappa_rms, 3),
-                   done ? format_number(r.history.back().kappa_rms, 3) : "failed at step " + std::to_string(r.steps),
+    table.add_row({drape_cases[c].name, format_significant(at(r, early).kappa_rms, 3),
+                   done ? format_significant(r.history.back().kappa_rms, 3) : "failed at step " + std::to_string(r.steps),
                    done ? format_fixed(r.history.back().sharpest * 180 / std::numbers::pi, 1) : "",
-                   format_fixed(r.newton_per_step, 2), format_fixed(1e3 * r.seconds_per_step, 2)});
+                   format_fixed(r.newton_per_step, 2), format_fixed(r.factorizations_per_step, 2),
+                   format_fixed(1e3 * r.seconds_per_step, 2)});
   }
   write_table_fragment(dir + "/drape.md", table, command);
   write_drape_cost(dir, command, runs[0].x);                               // 4. and what it costs

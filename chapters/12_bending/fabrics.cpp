@@ -90,9 +90,9 @@ void write_fabrics(const std::string& dir, const std::string& command) {
   for (const Fabric& f : fabrics) {
     const double c = std::cbrt(f.bending_rigidity / (f.areal_density * 9.81));
     const double L = simulated_reading(f);
-    table.add_row({f.name, format_number(f.areal_density, 4), format_number(1e6 * f.bending_rigidity, 4),
+    table.add_row({f.name, format_number(f.areal_density, 4), format_significant(1e6 * f.bending_rigidity, 4),
                    format_fixed(100 * c, 3), format_fixed(100 * L, 3), format_fixed(50 * L, 3),
-                   format_number(100 * (L / 2 / c - 1), 2) + " %"});
+                   format_significant(100 * (L / 2 / c - 1), 2) + " %"});
     Cantilever strip(fabric_strip(f, L));
     const CantileverRest rest = at_rest(strip);
     const ElasticaShape exact = heavy_elastica(strip.lambda(), 200);

@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
                  [&] { report = true; });
   cli.add_switch("--drape-runs", "the curtain of Chapter 10 hanging with and without bending, and its cost",
                  [&] { drape = true; });
-  cli.add_switch("--full", "with --report-runs: the convergence study down to L/160, the flexion strip's to L/80 (minutes)", [&] { full = true; });
+  cli.add_switch("--full", "with --report-runs: the convergence study down to L/160, the flexion strip's to L/80 (about a minute)", [&] { full = true; });
   cli.declare_outputs([&](const Options&) {
     return drape ? drape_outputs() : report ? report_outputs() : single_outputs();
   });

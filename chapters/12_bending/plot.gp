@@ -13,17 +13,19 @@ set yrange [-1:0.05]
 set grid
 set key outside right top font ",10"
 F = data.'/shapes.dat'
+# The labels go before the one plot command: a replot would write a second page that viewers do not show.
+set label 1 "lambda = 1" at 0.80, -0.07
+set label 2 "lambda = 8" at 0.66, -0.40
+set label 3 "lambda = 40" at 0.04, -0.75
+# Each flexion strip's tip, by its lambda.
+set label 4 "1" at 0.57, -0.73 tc rgb "#d62728" font ",10"
+set label 5 "8" at 0.53, -0.77 tc rgb "#d62728" font ",10"
+set label 6 "40" at 0.425, -0.82 tc rgb "#d62728" font ",10"
 plot for [k=0:2] F index 4*k u 1:2 w l lw 2 lc rgb "#333333" t (k == 0 ? "elastica" : ""), \
      for [k=0:2] F index 4*k+1 u 1:2 w p pt 7 ps 0.8 lc rgb "#1f77b4" t (k == 0 ? "hinge" : ""), \
      for [k=0:2] F index 4*k+2 u 1:2 w p pt 6 ps 1.2 lc rgb "#2ca02c" t (k == 0 ? "quadratic" : ""), \
      for [k=0:2] F index 4*k+3 u 1:2 w lp pt 4 ps 0.8 dt 2 lc rgb "#d62728" t (k == 0 ? "flexion springs" : "")
-set label 1 "lambda = 1" at 0.80, -0.07
-set label 2 "lambda = 8" at 0.55, -0.52
-set label 3 "lambda = 40" at 0.12, -0.85
-replot
-unset label 1
-unset label 2
-unset label 3
+unset label
 set size noratio
 
 # 2. Convergence at lambda = 8.

@@ -3,20 +3,16 @@
 
 #include "analysis/cantilever.hpp"
 #include "analysis/elastica.hpp"
-#include "analysis/power_iteration.hpp"
 #include "base/format_number.hpp"
 #include "model/bending.hpp"
 #include "program/fragment.hpp"
 #include "program/interrupt.hpp"
 #include "program/output.hpp"
 #include "program/output_kinds.hpp"
-#include "program/timing.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -38,28 +34,20 @@ CantileverParams test_strip(BendingModel model, double lambda, int cells) {
   return p;
 }
 
-// One strip at rest, or nothing when Newton's method did not get there.
-struct Measured {
-  CantileverRest rest;
-  double seconds = 0;
-};
 
 // The flexion strip is solved to 1e-4 particle weights, not 1e-9: its Newton iteration converges linearly (the
 // springs' bending energy is quartic in the angle, flat at the straight tip) and then stalls where a step's change
 // of the energy is below the energy's rounding and the line search can no longer tell a better shape from a worse
 // one: near 4e-7 weights at L/40, 3e-5 at L/80. What is left is the stiff springs' stretch: the tip at 30 weights
-// already agrees with the one at 3e-5 to eight digits (L/80), far below the tens of percent the table shows.
-Measured measure(const CantileverParams& p) {
+// already agrees with the one at 3e-5 to one part in 1e7 (L/80), far below the tens of percent the table shows.
+CantileverRest measure(const CantileverParams& p) {
   throw_if_interrupted();
-  const double start = thread_cpu_seconds();
   Cantilever strip(p);
   const bool flexion = p.model == BendingModel::flexion;
-  Measured m{strip.rest_shape(CantileverStart::elastica, flexion ? 1e-4 : 1e-9, flexion ? 4000 : 300,
-                              &interrupt_flag()),
-             0};
+  const CantileverRest rest = strip.rest_shape(CantileverStart::elastica, flexion ? 1e-4 : 1e-9,
+                                               flexion ? 4000 : 300, &interrupt_flag());
   throw_if_interrupted();
-  m.seconds = thread_cpu_seconds() - start;
-  return m;
+  return rest;
 }
 
 // shapes.dat: per lambda, the elastica and each model's strip at L/20, as the centre line (x / L, z / L); one
@@ -80,11 +68,11 @@ void write_shapes(const std::string& dir, const std::string& command) {
     for (std::size_t k = 0; k < exact.x.size(); ++k) std::fprintf(out, "%.8g %.8g\n", exact.x[k], -exact.y[k]);
     for (const BendingModel model : all_models) {
       const CantileverParams p = test_strip(model, lambda, 20);
-      const Measured m = measure(p);
-      row.push_back(m.rest.converged ? cell(m.rest.tip_deflection / p.overhang, m.rest.chord_angle) : "not at rest");
+      const CantileverRest rest = measure(p);
+      row.push_back(rest.converged ? cell(rest.tip_deflection / p.overhang, rest.chord_angle) : "not at rest");
       std::fprintf(out, "\n\n# lambda %g %s (%s)\n", lambda, bending_models().name(model),
-                   m.rest.converged ? "at rest" : "not at rest");
-      write_centre_line(out, Cantilever(p), m.rest.x, p.overhang);
+                   rest.converged ? "at rest" : "not at rest");
+      write_centre_line(out, Cantilever(p), rest.x, p.overhang);
     }
     std::fprintf(out, "\n\n");
     table.add_row(row);
@@ -94,7 +82,8 @@ void write_shapes(const std::string& dir, const std::string& command) {
 }
 
 // convergence.dat and convergence.md: the tip deflection's relative error against the elastica at lambda = 8 as
-// the spacing halves, for each model.
+// the spacing halves, for each model, with the Newton iterations each rest shape took (no times: one run of each
+// strip, on a shared machine, would be a timing without its spread).
 void write_convergence(const std::string& dir, bool full, const std::string& command) {
   const double lambda = 8;
   const double exact = heavy_elastica(lambda).tip_deflection * 0.1;
@@ -105,8 +94,11 @@ void write_convergence(const std::string& dir, bool full, const std::string& com
   std::fprintf(out, "# lambda = 8, L = 0.1 m: cells d/L then |relative tip error| and Newton iterations for hinge, "
                     "quadratic, flexion, and hinge with springs 100 times stiffer (nan: not at rest)\n");
   MarkdownTable table({"spacing", "hinge: tip error", "quadratic: tip error", "flexion springs: tip error",
-                       "hinge, K x 100: tip error", "hinge: Newton iterations, time", "flexion: Newton iterations"},
+                       "hinge, K x 100: tip error", "hinge: Newton iterations", "flexion: Newton iterations"},
                       "lrrrrrr");
+  const auto percent = [&](const CantileverRest& rest) {
+    return rest.converged ? format_significant(100 * (rest.tip_deflection / exact - 1), 3) + " %" : "not at rest";
+  };
   for (const int n : cells) {
     std::fprintf(out, "%d %.6g", n, 1.0 / n);
     std::vector<std::string> row = {"L/" + std::to_string(n)};
@@ -120,22 +112,21 @@ void write_convergence(const std::string& dir, bool full, const std::string& com
         flexion_work = "not run";
         continue;
       }
-      const Measured m = measure(test_strip(model, lambda, n));
-      const double error = m.rest.tip_deflection / exact - 1;
-      std::fprintf(out, " %.6e %d", m.rest.converged ? std::abs(error) : NAN, m.rest.iterations);
-      row.push_back(m.rest.converged ? format_number(100 * error, 3) + " %" : "not at rest");
-      if (model == BendingModel::hinge)
-        hinge_work = std::to_string(m.rest.iterations) + ", " + format_fixed(m.seconds, 3) + " s";
-      if (model == BendingModel::flexion) flexion_work = std::to_string(m.rest.iterations);
+      const CantileverRest rest = measure(test_strip(model, lambda, n));
+      std::fprintf(out, " %.6e %d", rest.converged ? std::abs(rest.tip_deflection / exact - 1) : NAN,
+                   rest.iterations);
+      row.push_back(percent(rest));
+      if (model == BendingModel::hinge) hinge_work = std::to_string(rest.iterations);
+      if (model == BendingModel::flexion) flexion_work = std::to_string(rest.iterations);
     }
     // The same hinge strip with springs 100 times stiffer: the stretch under its own weight, a part of the error
     // that does not fall with d, shrinks with it.
     CantileverParams stiff = test_strip(BendingModel::hinge, lambda, n);
     stiff.stiffness *= 100;
-    const Measured m = measure(stiff);
-    const double error = m.rest.tip_deflection / exact - 1;
-    std::fprintf(out, " %.6e %d\n", m.rest.converged ? std::abs(error) : NAN, m.rest.iterations);
-    row.push_back(m.rest.converged ? format_number(100 * error, 3) + " %" : "not at rest");
+    const CantileverRest rest = measure(stiff);
+    std::fprintf(out, " %.6e %d\n", rest.converged ? std::abs(rest.tip_deflection / exact - 1) : NAN,
+                 rest.iterations);
+    row.push_back(percent(rest));
     row.push_back(hinge_work);
     row.push_back(flexion_work);
     table.add_row(row);
@@ -154,8 +145,7 @@ void write_split(const std::string& dir, const std::string& command) {
     for (const GridSplit split : {GridSplit::uniform, GridSplit::both}) {
       CantileverParams p = test_strip(BendingModel::hinge, lambda, n);
       p.split = split;
-      const Measured m = measure(p);
-      row.push_back(format_number(100 * (m.rest.tip_deflection / exact - 1), 3) + " %");
+      row.push_back(format_significant(100 * (measure(p).tip_deflection / exact - 1), 3) + " %");
     }
     table.add_row(row);
   }

@@ -33,8 +33,9 @@ void write_fabrics(const std::string& dir, const std::string& command);
 /// along the clamp's direction and up, the rows averaged across the strip, in units of `unit` [m].
 void write_centre_line(std::FILE* out, const cloth::Cantilever& strip, const cloth::Vector& x, double unit);
 
-/// The median over 5 runs of the mean processor time of 5 calls of `work` [s] (program/timing.hpp).
-double median_seconds(const std::function<void()>& work);
+/// The processor time of one call of `work` as a table cell in milliseconds: the median over 5 runs of the mean of
+/// 5 calls, and the fastest and slowest runs beside it, "4.073 (3.951-4.310)" (program/timing.hpp).
+std::string milliseconds_cell(const std::function<void()>& work);
 
 /// The files `--drape-runs` writes, declared once.
 cloth::OutputList drape_outputs();

@@ -90,4 +90,13 @@ std::string format_fixed(double x, int decimals) {
   return buffer;
 }
 
+std::string format_significant(double x, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%#.*g", digits, x);
+  std::string text = buffer;
+  // '#' keeps the zeros, and also a point with nothing after it ("100."): that point goes.
+  if (const auto point = text.find('.'); point != std::string::npos && point + 1 == text.size()) text.pop_back();
+  return text;
+}
+
 }  // namespace cloth

@@ -51,4 +51,8 @@ std::string reader_command(int argc, const char* const* argv);
 /// `x` with `decimals` digits after the point ("3.00"), for columns whose digits should line up.
 std::string format_fixed(double x, int decimals);
 
+/// `x` to `digits` significant figures with its trailing zeros kept ("3.00", "0.0478", "4.00e+04", "100"): for
+/// a measured column, where format_number's "3" would claim one figure where three were measured.
+std::string format_significant(double x, int digits);
+
 }  // namespace cloth
