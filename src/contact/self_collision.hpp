@@ -36,6 +36,7 @@ struct SelfCollisionWork {
   long long reuses = 0;           ///< steps that kept the last build's candidates (no particle moved a margin)
   long long distance_tests = 0;   ///< distances the hash's queries computed
   long long passes = 0;           ///< response passes over the candidates
+  long long full_passes = 0;      ///< of them, passes that read every candidate in order (the others, marked ones)
   double seconds = 0;             ///< processor seconds of the clamp, hash builds, queries and responses
   /// Of them, the sweep's (clamp_and_correct): the clamp and the obstacle correction of every particle, which a
   /// step without self-collision makes too.
@@ -107,7 +108,8 @@ class SelfCollision {
   /// pass moved before reaching them. Every other pair is where the last pass found it, or left it, apart, so the
   /// result is that of a full pass, in the same order. The pairs to visit are marked in a bit per candidate,
   /// reached from the moved particles through each particle's list of candidates, and read in order: a pass costs
-  /// the moved particles' pairs, not a sweep over every candidate.
+  /// the moved particles' pairs, not a sweep over every candidate. When those are more than a quarter of all the
+  /// candidates, the pass reads every candidate in order instead, as resolve does, which then costs less.
   int resolve_again(Eigen::VectorXd& x, Eigen::VectorXd& v);
 
   /// The particles the last pass moved, each once.
@@ -132,6 +134,7 @@ class SelfCollision {
 
  private:
   [[nodiscard]] bool apart_at_rest(int a, int b) const;
+  int pass_over_all(Eigen::VectorXd& x, Eigen::VectorXd& v);
   void mark_moved(int p);  // flags p in moved_now_ and lists it, once
   void index_candidates();  // each particle's candidates (pair_start_, pair_index_), once per build
   void mark_pairs_of(int p, std::size_t from);  // marks p's candidates numbered from `from` on in todo_
