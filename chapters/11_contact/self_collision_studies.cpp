@@ -57,7 +57,7 @@ void fold_study(const Study& study) {
                        "deepest in the ground [% of thickness]", "passes per step", "pairs parted per step",
                        "particles clamped", "hash builds per step", "distances tested per build and particle",
                        "self-collision / forces", "of it the hash and its margin / forces",
-                       "of it the passes and the obstacle corrections between them / forces",
+                       "of it the passes / forces",
                        "of it the clamp and obstacle sweep / forces"}, "lrrrrrrrrrrrr");
   const auto steps = static_cast<double>(run.steps);
   table.add_row({std::to_string(grid.M) + " x " + std::to_string(grid.N), std::to_string(run.steps),
