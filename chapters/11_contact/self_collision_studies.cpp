@@ -56,9 +56,8 @@ void fold_study(const Study& study) {
   MarkdownTable table({"strip", "steps", "closest pair (rest > 2 thickness) after any step [% of thickness]",
                        "deepest in the ground [% of thickness]", "passes per step", "pairs parted per step",
                        "particles clamped", "hash builds per step", "distances tested per build and particle",
-                       "self-collision / forces", "of it the hash and its margin / forces",
-                       "of it the passes / forces",
-                       "of it the clamp and obstacle sweep / forces"}, "lrrrrrrrrrrrr");
+                       "self-collision / forces", "of it the hash / forces", "of it the passes / forces",
+                       "of it the sweep / forces"}, "lrrrrrrrrrrrr");
   const auto steps = static_cast<double>(run.steps);
   table.add_row({std::to_string(grid.M) + " x " + std::to_string(grid.N), std::to_string(run.steps),
                  format_fixed(100 * closest / b.model.thickness, 2),
