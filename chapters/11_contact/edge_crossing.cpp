@@ -4,7 +4,7 @@
 #include "studies.hpp"
 
 #include "base/format_number.hpp"
-#include "contact/spatial_hash.hpp"
+#include "contact/self_collision.hpp"
 #include "program/fragment.hpp"
 
 #include <Eigen/Geometry>

@@ -112,6 +112,7 @@ int single_run(Options& opt, SceneKind kind, const ContactFlags& flags, const st
     lines.emplace_back("self_collision_candidates", std::to_string(work.pairs_found));
     lines.emplace_back("self_collision_corrected", std::to_string(work.pairs_corrected));
     lines.emplace_back("self_collision_seconds", format_number(work.seconds, 3));
+    lines.emplace_back("self_collision_pass_seconds", format_number(work.pass_seconds, 3));
   }
   return finish_run(result, *stepper, run, program, lines);
 }

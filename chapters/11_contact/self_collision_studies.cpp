@@ -56,8 +56,8 @@ void fold_study(const Study& study) {
   MarkdownTable table({"strip", "steps", "closest pair (rest > 2 thickness) after any step [% of thickness]",
                        "deepest in the ground [% of thickness]", "passes per step", "pairs parted per step",
                        "particles clamped", "hash builds per step", "distances tested per build and particle",
-                       "self-collision / forces", "of it the hash, its margin and the passes / forces",
-                       "of it the clamp and obstacle sweep / forces"}, "lrrrrrrrrrrr");
+                       "self-collision / forces", "of it the hash / forces", "of it the passes / forces",
+                       "of it the sweep / forces"}, "lrrrrrrrrrrrr");
   const auto steps = static_cast<double>(run.steps);
   table.add_row({std::to_string(grid.M) + " x " + std::to_string(grid.N), std::to_string(run.steps),
                  format_fixed(100 * closest / b.model.thickness, 2),
@@ -68,7 +68,8 @@ void fold_study(const Study& study) {
                  format_fixed(static_cast<double>(work.distance_tests) / static_cast<double>(work.builds) /
                                   static_cast<double>(grid.M * grid.N), 1),
                  format_fixed(1000 * work.seconds / steps / forces, 2),
-                 format_fixed(1000 * (work.seconds - work.sweep_seconds) / steps / forces, 2),
+                 format_fixed(1000 * (work.seconds - work.sweep_seconds - work.pass_seconds) / steps / forces, 2),
+                 format_fixed(1000 * work.pass_seconds / steps / forces, 2),
                  format_fixed(1000 * work.sweep_seconds / steps / forces, 2)});
   write_table_fragment(study.dir + "/fold.md", table, study.command);
   write_scene_frames(study, "fold", b, run.frames);

@@ -14,6 +14,19 @@
 
 namespace cloth {
 
+/// The response to one pair (a, b) of equal-mass particles of x and v (3 coordinates each) closer than `reach`:
+/// parted along the line between them to `thickness`, its approaching normal velocity removed. Returns whether it
+/// moved them.
+bool part_pair(int a, int b, double thickness, double reach, double* x, double* v);
+
+/// The response to self-contact of equal-mass particles: each pair (a, b) closer than `thickness` is pushed apart
+/// along n = (x_b - x_a) / |x_b - x_a|, each by half of what is missing, and its approaching normal relative
+/// velocity is removed by equal and opposite impulses (perfectly inelastic). Both corrections are internal, so
+/// the centre of mass and the linear momentum do not change. Pairs closer than thickness but no closer than
+/// (1 - slack) thickness are left as they are. Returns the pairs it corrected.
+int resolve_self_contacts(const std::vector<std::pair<int, int>>& pairs, double thickness,
+                          Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<Eigen::VectorXd> v, double slack = 0);
+
 /// What self-collision did in one call, and the wall time it took (the chapter weighs it against the forces).
 struct SelfCollisionWork {
   long long pairs_found = 0;      ///< close pairs the hash returned, over all passes
@@ -23,10 +36,14 @@ struct SelfCollisionWork {
   long long reuses = 0;           ///< steps that kept the last build's candidates (no particle moved a margin)
   long long distance_tests = 0;   ///< distances the hash's queries computed
   long long passes = 0;           ///< response passes over the candidates
+  long long full_passes = 0;      ///< of them, passes that read every candidate in order (the others, marked ones)
   double seconds = 0;             ///< processor seconds of the clamp, hash builds, queries and responses
   /// Of them, the sweep's (clamp_and_correct): the clamp and the obstacle correction of every particle, which a
   /// step without self-collision makes too.
   double sweep_seconds = 0;
+  /// Of them, the response's passes with the obstacle corrections between them (resolve, resolve_again and
+  /// correct_moved); the rest is the hash's builds and queries and the margin's checks.
+  double pass_seconds = 0;
 };
 
 /// The particles of one cloth, their rest positions (3 per particle, the flat sheet the scene starts from) and the
@@ -91,7 +108,8 @@ class SelfCollision {
   /// pass moved before reaching them. Every other pair is where the last pass found it, or left it, apart, so the
   /// result is that of a full pass, in the same order. The pairs to visit are marked in a bit per candidate,
   /// reached from the moved particles through each particle's list of candidates, and read in order: a pass costs
-  /// the moved particles' pairs, not a sweep over every candidate.
+  /// the moved particles' pairs, not a sweep over every candidate. When those are more than a quarter of all the
+  /// candidates, the pass reads every candidate in order instead, as resolve does, which then costs less.
   int resolve_again(Eigen::VectorXd& x, Eigen::VectorXd& v);
 
   /// The particles the last pass moved, each once.
@@ -111,10 +129,12 @@ class SelfCollision {
   [[nodiscard]] const SelfCollisionWork& work() const { return work_; }
   void add_seconds(double s) { work_.seconds += s; }
   void add_sweep_seconds(double s) { work_.sweep_seconds += s; }
+  void add_pass_seconds(double s) { work_.pass_seconds += s; }
   void count_clamped(int n) { work_.clamped += n; }
 
  private:
   [[nodiscard]] bool apart_at_rest(int a, int b) const;
+  int pass_over_all(Eigen::VectorXd& x, Eigen::VectorXd& v);
   void mark_moved(int p);  // flags p in moved_now_ and lists it, once
   void index_candidates();  // each particle's candidates (pair_start_, pair_index_), once per build
   void mark_pairs_of(int p, std::size_t from);  // marks p's candidates numbered from `from` on in todo_

@@ -224,34 +224,4 @@ std::vector<std::pair<int, int>> pairs_within_brute_force(const Eigen::Ref<const
   return pairs;
 }
 
-// [self_contact]
-bool part_pair(int a, int b, double thickness, double reach, double* x, double* v) {
-  Eigen::Map<Eigen::Vector3d> xa(x + 3 * a), xb(x + 3 * b), va(v + 3 * a), vb(v + 3 * b);
-  const Eigen::Vector3d ab = xb - xa;
-  // The squared distance first: most candidates are apart, and need no square root.
-  const double distance2 = ab.squaredNorm();
-  if (!(distance2 < reach * reach) || distance2 == 0) return false;  // coincident particles have no direction to part in
-  const double distance = std::sqrt(distance2);
-  const Eigen::Vector3d n = ab / distance;
-  // Equal masses: equal and opposite moves keep the centre of mass where it is.
-  const Eigen::Vector3d half_gap = 0.5 * (thickness - distance) * n;
-  xa -= half_gap;
-  xb += half_gap;
-  // Equal and opposite impulses remove the approaching normal relative velocity and keep the momentum.
-  const double approach = (vb - va).dot(n);
-  if (approach < 0) {
-    va += 0.5 * approach * n;
-    vb -= 0.5 * approach * n;
-  }
-  return true;
-}
-
-int resolve_self_contacts(const std::vector<std::pair<int, int>>& pairs, double thickness,
-                          Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<Eigen::VectorXd> v, double slack) {
-  int corrected = 0;
-  for (const auto& [a, b] : pairs) corrected += part_pair(a, b, thickness, (1 - slack) * thickness, x.data(), v.data()) ? 1 : 0;
-  return corrected;
-}
-// [self_contact]
-
 }  // namespace cloth

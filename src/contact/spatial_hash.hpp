@@ -74,17 +74,4 @@ class SpatialHash {
 [[nodiscard]] std::vector<std::pair<int, int>> pairs_within_brute_force(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                                         double r);
 
-/// The response to one pair (a, b) of equal-mass particles of x and v (3 coordinates each) closer than `reach`:
-/// parted along the line between them to `thickness`, its approaching normal velocity removed. Returns whether it
-/// moved them.
-bool part_pair(int a, int b, double thickness, double reach, double* x, double* v);
-
-/// The response to self-contact of equal-mass particles: each pair (a, b) closer than `thickness` is pushed apart
-/// along n = (x_b - x_a) / |x_b - x_a|, each by half of what is missing, and its approaching normal relative
-/// velocity is removed by equal and opposite impulses (perfectly inelastic). Both corrections are internal, so
-/// the centre of mass and the linear momentum do not change. Pairs closer than thickness but no closer than
-/// (1 - slack) thickness are left as they are. Returns the pairs it corrected.
-int resolve_self_contacts(const std::vector<std::pair<int, int>>& pairs, double thickness,
-                          Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<Eigen::VectorXd> v, double slack = 0);
-
 }  // namespace cloth

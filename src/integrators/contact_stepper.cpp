@@ -64,10 +64,12 @@ void ContactStepper::correct_with_self_collision(double h, Vector& x, Vector& v)
   // rebuilt and the passes run on the new list.
   self_->update_candidates(x);
   for (int round = 1;; ++round) {
+    const std::clock_t passes_start = std::clock();
     for (int pass = 0; pass < max_self_passes; ++pass) {
       if ((pass == 0 ? self_->resolve(x, v) : self_->resolve_again(x, v)) == 0) break;
       self_->correct_moved(model_, x0_, x, v);  // the others are as the last correction left them
     }
+    self_->add_pass_seconds(static_cast<double>(std::clock() - passes_start) / CLOCKS_PER_SEC);
     if (round == max_self_rounds || !self_->moved_beyond_margin(x)) break;
     self_->find_candidates(x);
   }
