@@ -1,4 +1,4 @@
-// The spatial hash of Teschner et al. 2003, stored as a counting sort, and the momentum-conserving pair response.
+// The spatial hash of Teschner et al. 2003, stored as a counting sort, and the brute-force search that checks it.
 #include "contact/spatial_hash.hpp"
 
 #include <algorithm>
