@@ -53,11 +53,10 @@ void fold_study(const Study& study) {
   // One force evaluation per step (symplectic Euler), timed on the strip's last state.
   Vector f(run.x.size());
   const double forces = best_ms(20, [&] { b.field->forces(run.x, run.v, f); });
-  MarkdownTable table({"strip", "steps", "closest pair (rest > 2 thickness) after any step [% of thickness]",
-                       "deepest in the ground [% of thickness]", "passes per step", "pairs parted per step",
-                       "particles clamped", "hash builds per step", "distances tested per build and particle",
-                       "self-collision / forces", "of it the hash / forces", "of it the passes / forces",
-                       "of it the sweep / forces"}, "lrrrrrrrrrrrr");
+  MarkdownTable table({"strip", "steps", "closest pair [%]", "deepest in the ground [%]", "passes per step",
+                       "pairs parted per step", "particles clamped", "builds per step",
+                       "distances per build and particle", "self-collision / forces", "hash / forces",
+                       "passes / forces", "sweep / forces"}, "lrrrrrrrrrrrr");
   const auto steps = static_cast<double>(run.steps);
   table.add_row({std::to_string(grid.M) + " x " + std::to_string(grid.N), std::to_string(run.steps),
                  format_fixed(100 * closest / b.model.thickness, 2),
