@@ -31,10 +31,11 @@ Vector accordion(const Grid& grid, int rows, double thickness) {
   return x;
 }
 
-// The fastest of `repeats` runs of f after one untimed run, in milliseconds of the thread's processor time
-// (program/timing.hpp): the run the machine disturbed least.
-double best_ms(int repeats, const std::function<void()>& f) {
-  return 1e3 * time_runs(f, {.runs = repeats, .warmup = 1, .repeat = 1}).fastest_cpu;
+// The median of `repeats` runs of f after one untimed run, in milliseconds of the thread's processor time
+// (program/timing.hpp). The chapter's ratios divide by one force evaluation of some 50 microseconds, so short that
+// a single run unlike the others moves the fastest of twenty by a third; it does not move the median.
+double median_ms(int repeats, const std::function<void()>& f) {
+  return 1e3 * time_runs(f, {.runs = repeats, .warmup = 1, .repeat = 1}).median_cpu;
 }
 
 }  // namespace
@@ -52,7 +53,7 @@ void fold_study(const Study& study) {
   const SelfCollisionWork& work = stepper.self_collision()->work();
   // One force evaluation per step (symplectic Euler), timed on the strip's last state.
   Vector f(run.x.size());
-  const double forces = best_ms(20, [&] { b.field->forces(run.x, run.v, f); });
+  const double forces = median_ms(20, [&] { b.field->forces(run.x, run.v, f); });
   MarkdownTable table({"strip", "steps", "closest pair [%]", "deepest in the ground [%]", "passes per step",
                        "pairs parted per step", "particles clamped", "builds per step",
                        "distances per build and particle", "self-collision / forces", "hash / forces",
@@ -89,7 +90,7 @@ void skin_study(const Study& study) {
     const SteppedRun run = step_run(stepper, b, h, T, 1);
     const SelfCollisionWork& work = stepper.self_collision()->work();
     Vector f(run.x.size());
-    const double forces = best_ms(20, [&] { b.field->forces(run.x, run.v, f); });
+    const double forces = median_ms(20, [&] { b.field->forces(run.x, run.v, f); });
     const auto steps = static_cast<double>(run.steps);
     table.add_row({format_number(skin, 3), format_number(1 + 2 * skin, 3),
                    format_fixed(static_cast<double>(work.builds) / steps, 2),
@@ -115,19 +116,19 @@ void hash_benchmark(const Study& study) {
     const Vector x0 = accordion(grid, 25, b.model.thickness);
     Vector x = x0, v = Vector::Zero(x0.size()), f(x0.size());
     SelfCollision self(b.scene->initial_positions(), b.model.thickness);
-    const double forces = best_ms(20, [&] { b.field->forces(x0, v, f); });
+    const double forces = median_ms(20, [&] { b.field->forces(x0, v, f); });
     // A step's self-collision with a build: the hash built and queried, and one pass of the response.
-    const double built = best_ms(20, [&] {
+    const double built = median_ms(20, [&] {
       x = x0;
       self.find_candidates(x);
       self.resolve(x, v);
     });
     // A step within the margin: the check of the kept list's margin, and one pass.
-    const double kept = best_ms(20, [&] {
+    const double kept = median_ms(20, [&] {
       self.update_candidates(x);
       self.resolve(x, v);
     });
-    const double brute = best_ms(n <= 200 ? 3 : 1, [&] { (void)pairs_within_brute_force(x0, 1.5 * b.model.thickness); });
+    const double brute = median_ms(n <= 200 ? 3 : 1, [&] { (void)pairs_within_brute_force(x0, 1.5 * b.model.thickness); });
     const double particles = grid.M * grid.N;
     const SelfCollisionWork& w = self.work();
     table.add_row({"30 x " + std::to_string(n), format_fixed(particles, 0), format_fixed(forces, 3),
