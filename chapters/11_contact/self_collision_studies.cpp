@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <string>
 
 using namespace cloth;
 
@@ -31,11 +32,27 @@ Vector accordion(const Grid& grid, int rows, double thickness) {
   return x;
 }
 
-// The median of `repeats` runs of f after one untimed run, in milliseconds of the thread's processor time
-// (program/timing.hpp). The chapter's ratios divide by one force evaluation of some 50 microseconds, so short that
-// a single run unlike the others moves the fastest of twenty by a third; it does not move the median.
-double median_ms(int repeats, const std::function<void()>& f) {
-  return 1e3 * time_runs(f, {.runs = repeats, .warmup = 1, .repeat = 1}).median_cpu;
+// The median, the fastest and the slowest of `repeats` runs of f after one untimed run, in milliseconds of the
+// thread's processor time (program/timing.hpp). The chapter's ratios divide medians: a force evaluation takes some
+// 50 microseconds, so short that a single run unlike the others moves the fastest of twenty by a third, and not
+// the median.
+struct Milliseconds {
+  double median, fastest, slowest;
+};
+Milliseconds time_ms(int repeats, const std::function<void()>& f) {
+  const Timing t = time_runs(f, {.runs = repeats, .warmup = 1, .repeat = 1});
+  return {1e3 * t.median_cpu, 1e3 * t.fastest_cpu, 1e3 * t.slowest_cpu};
+}
+
+// "median (fastest-slowest)", the book's way of giving a time with its spread.
+std::string with_spread(const Milliseconds& t, int digits) {
+  std::string text = format_fixed(t.median, digits);
+  text += " (";
+  text += format_fixed(t.fastest, digits);
+  text += '-';
+  text += format_fixed(t.slowest, digits);
+  text += ')';
+  return text;
 }
 
 }  // namespace
@@ -53,7 +70,7 @@ void fold_study(const Study& study) {
   const SelfCollisionWork& work = stepper.self_collision()->work();
   // One force evaluation per step (symplectic Euler), timed on the strip's last state.
   Vector f(run.x.size());
-  const double forces = median_ms(20, [&] { b.field->forces(run.x, run.v, f); });
+  const double forces = time_ms(20, [&] { b.field->forces(run.x, run.v, f); }).median;
   MarkdownTable table({"strip", "steps", "closest pair [%]", "deepest in the ground [%]", "passes per step",
                        "pairs parted per step", "particles clamped", "builds per step",
                        "distances per build and particle", "self-collision / forces", "hash / forces",
@@ -90,7 +107,7 @@ void skin_study(const Study& study) {
     const SteppedRun run = step_run(stepper, b, h, T, 1);
     const SelfCollisionWork& work = stepper.self_collision()->work();
     Vector f(run.x.size());
-    const double forces = median_ms(20, [&] { b.field->forces(run.x, run.v, f); });
+    const double forces = time_ms(20, [&] { b.field->forces(run.x, run.v, f); }).median;
     const auto steps = static_cast<double>(run.steps);
     table.add_row({format_number(skin, 3), format_number(1 + 2 * skin, 3),
                    format_fixed(static_cast<double>(work.builds) / steps, 2),
@@ -116,27 +133,28 @@ void hash_benchmark(const Study& study) {
     const Vector x0 = accordion(grid, 25, b.model.thickness);
     Vector x = x0, v = Vector::Zero(x0.size()), f(x0.size());
     SelfCollision self(b.scene->initial_positions(), b.model.thickness);
-    const double forces = median_ms(20, [&] { b.field->forces(x0, v, f); });
+    const Milliseconds forces = time_ms(20, [&] { b.field->forces(x0, v, f); });
     // A step's self-collision with a build: the hash built and queried, and one pass of the response.
-    const double built = median_ms(20, [&] {
+    const Milliseconds built = time_ms(20, [&] {
       x = x0;
       self.find_candidates(x);
       self.resolve(x, v);
     });
     // A step within the margin: the check of the kept list's margin, and one pass.
-    const double kept = median_ms(20, [&] {
+    const Milliseconds kept = time_ms(20, [&] {
       self.update_candidates(x);
       self.resolve(x, v);
     });
-    const double brute = median_ms(n <= 200 ? 3 : 1, [&] { (void)pairs_within_brute_force(x0, 1.5 * b.model.thickness); });
+    const Milliseconds brute = time_ms(n <= 200 ? 3 : 1, [&] { (void)pairs_within_brute_force(x0, 1.5 * b.model.thickness); });
     const double particles = grid.M * grid.N;
     const SelfCollisionWork& w = self.work();
-    table.add_row({"30 x " + std::to_string(n), format_fixed(particles, 0), format_fixed(forces, 3),
-                   format_fixed(built, 3), format_fixed(built / forces, 2), format_fixed(kept, 3),
-                   format_fixed(kept / forces, 2),
+    table.add_row({"30 x " + std::to_string(n), format_fixed(particles, 0), with_spread(forces, 3),
+                   with_spread(built, 3), format_fixed(built.median / forces.median, 2), with_spread(kept, 3),
+                   format_fixed(kept.median / forces.median, 2),
                    format_fixed(static_cast<double>(w.distance_tests) / static_cast<double>(w.builds) / particles, 1),
-                   format_fixed(static_cast<double>(self.candidates().size()) / particles, 2), format_fixed(brute, 1)});
-    (n == 100 ? first : last) = {forces, built, kept, brute};
+                   format_fixed(static_cast<double>(self.candidates().size()) / particles, 2),
+                   format_fixed(brute.median, 1)});
+    (n == 100 ? first : last) = {forces.median, built.median, kept.median, brute.median};
   }
   const auto exponent = [&](std::size_t k) { return format_fixed(std::log(last[k] / first[k]) / std::log(8.0), 2); };
   table.add_row({"growth exponent, 3000 to 24 000", "", exponent(0), exponent(1), "", exponent(2), "", "", "",
