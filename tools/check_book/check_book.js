@@ -1,11 +1,21 @@
-// The book's browser check, run by tools/check_book/check_book.sh inside headless Chromium: loads every page of the book in
+// The book's browser check, run by tools/check_book/check_book.sh inside headless Chromium: loads pages of the book in
 // an iframe as wide as a browser window, lets MathJax finish, and lists what a reader would see broken: formula
 // errors, raw formula commands and other raw markup (an escaped '|', '--' printed as a dash, \ref), missing
-// images, links to missing files or anchors, and figures, tables or formulas wider than the text column. The verdict is written into <pre id="verdict">, one problem per line.
+// images, links to missing files or anchors, and figures, tables or formulas wider than the text column.
 //
-// It reads window.CHECK_BOOK = {root: "file:///.../html/", pages: ["ch01.html", ...], widths: [1280, 800],
-// concurrency: 3}, written by check_book.sh into pages.js. Chromium must run with --allow-file-access-from-files,
-// so that this page may read the documents of the iframes it loads.
+// It reads window.CHECK_BOOK = {root: "file:///.../html/", pages: ["ch01.html", ...], allPages: [...],
+// widths: [1280, 800], concurrency: 3}, written by check_book.sh into pages.js: check_book.sh shares the book's
+// pages (allPages) among several Chromium processes, one core each, and this one checks `pages`. A link into one of
+// allPages may name an anchor that only another process sees (the anchors a page defines once its scripts ran), so
+// those links are left to check_book.sh, which merges the processes' findings. The findings are written into
+// <pre id="verdict">, one per line, fields separated by tabs:
+//   P problem            a problem, as "page: what is wrong"
+//   A page id            an anchor one of `pages` defines      G page   that page exists (its anchors are listed)
+//   L page file anchor href   a link into allPages with an anchor, to be matched against the A lines
+//   N count              the number of links that stay inside the book
+//   X message            the checker itself failed
+// Chromium must run with --allow-file-access-from-files, so that this page may read the documents of the iframes
+// it loads.
 "use strict";
 
 (function () {
@@ -245,16 +255,30 @@
     });
   }
 
-  async function checkLinks() {
+  // Links into allPages with an anchor are left to check_book.sh (see the top of this file); links to a page of
+  // allPages without one need no check (the page exists), and the rest (images, scripts, pages outside a partial
+  // check) are read here.
+  async function checkLinks(deferred) {
+    const bookPages = new Set(config.allPages);
     const targets = new Map(anchors);  // file -> its anchors, or null when it does not exist
     for (const link of links) {
+      if (bookPages.has(link.file)) {
+        if (link.anchor) deferred.add(["L", link.page, link.file, link.anchor, link.href].map(field).join("\t"));
+        continue;
+      }
       if (!targets.has(link.file)) targets.set(link.file, await readTarget(link.file));
       const ids = targets.get(link.file);
       if (ids === null) report(link.page, "link '" + link.href + "': no such file");
       else if (link.anchor && /\.html$/.test(link.file) && !ids.has(link.anchor))
         report(link.page, "link '" + link.href + "': " + link.file + " has no anchor '" + link.anchor + "'");
     }
+    // A page that did not finish has its anchors read as written, before any script ran.
+    for (const page of config.pages)
+      if (!anchors.has(page)) anchors.set(page, await readTarget(page));
   }
+
+  // One field of a verdict line: tabs and line breaks would split it.
+  function field(text) { return String(text).replace(/[\t\n\r]/g, " "); }
 
   async function main() {
     const queue = config.pages.slice();
@@ -269,17 +293,23 @@
       })());
     }
     await Promise.all(workers);
-    await checkLinks();
+    const deferred = new Set();
+    await checkLinks(deferred);
     document.getElementById("frames").remove();
-    const lines = Array.from(problems).sort();
-    lines.push("checked " + config.pages.length + " pages at " + config.widths.join(" and ") + " px windows, " +
-               links.length + " links: " + problems.size + " problems");
+    const lines = Array.from(problems, problem => "P\t" + field(problem));
+    for (const [page, ids] of anchors) {
+      if (ids === null) continue;
+      lines.push("G\t" + field(page));
+      for (const id of ids) lines.push("A\t" + field(page) + "\t" + field(id));
+    }
+    lines.push(...deferred);
+    lines.push("N\t" + links.length);
     verdict.textContent = lines.join("\n");
     verdict.setAttribute("data-done", "yes");
   }
 
   main().catch(error => {
-    verdict.textContent = "the checker itself failed: " + error;
+    verdict.textContent = "X\tthe checker itself failed: " + field(error);
     verdict.setAttribute("data-done", "yes");
   });
 })();
