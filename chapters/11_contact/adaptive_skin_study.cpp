@@ -35,8 +35,7 @@ long long missed_contacts(const AdaptiveSkinList& list, const Vector& x, const V
 
 // [adaptive_skin_study]
 void adaptive_skin_study(const Study& study) {
-  const Grid grid{30, study.quick ? 100 : 200, 0.01};
-  const double T = study.quick ? 1.0 : 1.5, h = 5e-4;
+  const auto [grid, T, h] = fold_study_run(study);
   const BuiltScene b = build_scene(SceneKind::fold, ContactFlags{}, &grid);
   const double delta = b.model.thickness;
   const Vector rest = b.scene->initial_positions();

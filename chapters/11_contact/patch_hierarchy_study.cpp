@@ -108,8 +108,7 @@ void count(const Grid& g, const Vector& x, int k, double delta, LeafCount& c) {
 }  // namespace
 
 void patch_hierarchy_study(const Study& study) {
-  const Grid grid{30, study.quick ? 100 : 200, 0.01};
-  const double T = study.quick ? 1.0 : 1.5, h = 5e-4;
+  const auto [grid, T, h] = fold_study_run(study);
   const BuiltScene b = build_scene(SceneKind::fold, ContactFlags{}, &grid);
   const double delta = b.model.thickness;
   constexpr std::array<int, 4> sizes{1, 2, 3, 4};  // 1 x 1: the fewest distances, the most boxes

@@ -58,8 +58,7 @@ std::string with_spread(const Milliseconds& t, int digits) {
 }  // namespace
 
 void fold_study(const Study& study) {
-  const Grid grid{30, study.quick ? 100 : 200, 0.01};
-  const double T = study.quick ? 1.0 : 1.5, h = 5e-4;
+  const auto [grid, T, h] = fold_study_run(study);
   const BuiltScene b = build_scene(SceneKind::fold, ContactFlags{}, &grid);
   ContactStepper stepper(make_stepper("symplectic_euler", *b.field), b.model);
   SelfCollision check(b.scene->initial_positions(), b.model.thickness);
@@ -95,8 +94,7 @@ void fold_study(const Study& study) {
 // skin.md: the fold of fold.md run again with each skin s of the kept list (ContactModel::skin): how often a step
 // rebuilds, how many candidates the list holds, and what self-collision costs beside one force evaluation.
 void skin_study(const Study& study) {
-  const Grid grid{30, study.quick ? 100 : 200, 0.01};
-  const double T = study.quick ? 1.0 : 1.5, h = 5e-4;
+  const auto [grid, T, h] = fold_study_run(study);
   MarkdownTable table({"skin s [thickness]", "reach 1 + 2 s [thickness]", "steps that built",
                        "candidates per particle and step", "passes per step", "self-collision / forces"}, "rrrrrr");
   for (const double skin : {0.125, 0.25, 0.375, 0.5}) {

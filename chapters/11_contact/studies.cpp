@@ -33,6 +33,10 @@ BuiltScene build_scene(SceneKind kind, const ContactFlags& flags, const Grid* gr
   return b;
 }
 
+FoldStudyRun fold_study_run(const Study& study) {
+  return {cloth::Grid{30, study.quick ? 100 : 200, 0.01}, study.quick ? 1.0 : 1.5, 5e-4};
+}
+
 SteppedRun step_run(Stepper& stepper, const BuiltScene& built, double h, double T, int frames,
                     const std::function<void(const Vector&)>& after_step) {
   SteppedRun run;

@@ -32,6 +32,14 @@ struct BuiltScene {
 };
 [[nodiscard]] BuiltScene build_scene(SceneKind kind, const ContactFlags& flags, const cloth::Grid* grid = nullptr);
 
+/// The fold the self-collision studies run: a 30 x 200 strip of 1 cm spacing to 1.5 s, or with `--quick` a 30 x 100
+/// strip to 1 s (the plots' version), stepped at h = 0.5 ms.
+struct FoldStudyRun {
+  cloth::Grid grid;
+  double T, h;
+};
+[[nodiscard]] FoldStudyRun fold_study_run(const Study& study);
+
 /// What a stepped run gives the studies.
 struct SteppedRun {
   bool ok = true;
